@@ -1,0 +1,10 @@
+#pragma once
+// Umbrella header of the lightsampler library.
+
+#include "lightsampler/buffer.h"
+#include "lightsampler/mesh.h"
+#include "lightsampler/overlap.h"
+#include "lightsampler/random.h"
+#include "lightsampler/sample.h"
+#include "lightsampler/sampler.h"
+#include "lightsampler/triangle_map.h"

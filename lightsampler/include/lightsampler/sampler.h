@@ -1,0 +1,102 @@
+#pragma once
+// The sampler: set up once with a mesh and its density maps, then generate a fresh sample set
+// every frame (new seed, new target, updated maps).
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "lightsampler/buffer.h"
+#include "lightsampler/mesh.h"
+#include "lightsampler/sample.h"
+
+namespace lightsampler {
+
+/// Triangle Rejection Sampling (the paper's method), or plain rejection sampling over the whole
+/// mesh (its Algorithm 1, the baseline).
+enum class Method { trs, rejection };
+
+/// How the per-triangle counts are turned into a CDF. `unordered` is the paper's Algorithm 3
+/// (one packed 64-bit atomic); `ordered` is a classic prefix sum; `automatic` takes unordered
+/// unless the triangle count and the total do not fit one 64-bit word together.
+enum class ScanOrder { automatic, unordered, ordered };
+
+struct FrameRequest {
+  std::uint64_t seed = 0;
+  /// N_target: the expected sample count. None: the count emerges from the maps (N-bar).
+  std::optional<double> target_count;
+  Method method = Method::trs;
+  ScanOrder scan = ScanOrder::automatic;
+  /// False: stop after the counts and the CDF (no samples), e.g. to size buffers.
+  bool realize = true;
+  /// Candidates tried per sample before giving up. A sample that gives up keeps its last
+  /// candidate and is counted in Frame::exhausted; a non-zero count means a biased frame.
+  std::uint32_t max_tries = 1u << 28;
+};
+
+struct PassTime {
+  std::string name;  ///< "counting", "rounding", "scan", "realization", "distribution"
+  double ms;
+};
+
+/// One frame's output. Reuse the same Frame across frames: buffers keep their capacity.
+struct Frame {
+  Buffer<Sample> samples;              ///< N samples
+  Buffer<double> expected_counts;      ///< N-bar_T per triangle, before scaling to the target
+  Buffer<std::uint64_t> counts;        ///< N_T per triangle, after scaling and stochastic rounding
+  Buffer<float> max_density;           ///< D_T^max per triangle (scaled by the map's scale)
+  Buffer<std::uint64_t> cdf;           ///< inclusive CDF of the counts, in processing order
+  Buffer<std::uint32_t> inverse_permutation;  ///< processing index -> triangle index
+
+  double expected_total = 0;      ///< N-bar, the integral of the density over the mesh (NaN: not computed)
+  std::uint64_t sample_count = 0;   ///< N, the effective total
+  std::uint64_t candidates = 0;     ///< candidates tried; sample_count / candidates = acceptance rate
+  std::uint64_t exhausted = 0;      ///< samples that reached max_tries
+  Method method = Method::trs;
+  ScanOrder scan_used = ScanOrder::ordered;
+  std::vector<PassTime> passes;     ///< time per pass, in order
+  double total_ms = 0;
+};
+
+/// A sampler bound to one mesh and its density maps. Implementations: the CPU backend
+/// (make_cpu_sampler); the Vulkan backend.
+class Sampler {
+ public:
+  virtual ~Sampler() = default;
+
+  virtual std::string backend() const = 0;   ///< "cpu", "vulkan"
+  virtual std::string device() const = 0;    ///< the processor or GPU that runs it
+  virtual unsigned threads() const = 0;      ///< worker threads (CPU backend)
+
+  virtual std::uint64_t triangle_count() const = 0;
+  virtual std::size_t map_count() const = 0;
+
+  /// Replaces density map `index` (size, addressing and scale may change). Throws
+  /// std::invalid_argument on a bad map, std::out_of_range on a bad index.
+  virtual void update_map(std::size_t index, const DensityMapView& map) = 0;
+
+  /// Generates one frame into `frame`.
+  virtual void generate(const FrameRequest& request, Frame& frame) = 0;
+
+  /// Density (samples per world area) at a point of a triangle, read exactly as the sampler
+  /// reads it (same texel, same addressing), so that a renderer's pdf agrees with the samples.
+  virtual float density(std::uint32_t triangle, float b1, float b2) const = 0;
+};
+
+struct CpuOptions {
+  unsigned threads = 0;  ///< worker threads; 0: every hardware thread
+};
+
+/// The native multi-threaded backend. Throws std::invalid_argument (bad mesh or map, with what
+/// and where) or std::length_error (2^32 triangles or more).
+std::unique_ptr<Sampler> make_cpu_sampler(const MeshView& mesh,
+                                          std::span<const DensityMapView> maps,
+                                          const CpuOptions& options = {});
+
+const char* to_string(Method method);
+const char* to_string(ScanOrder scan);
+
+}  // namespace lightsampler

@@ -1,0 +1,227 @@
+// The CPU backend: the passes of cpu/passes.h strung together, timed, on a TBB arena of the
+// requested size.
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "cpu/passes.h"
+#include "validate.h"
+
+namespace lightsampler {
+
+namespace {
+
+// Elements per packed atomic in the unordered scan (the size of a GPU subgroup reduction).
+constexpr std::size_t kScanBlock = 256;
+// Largest expected total accepted: counts are 64-bit, with headroom for the scan's packing.
+constexpr double kMaxTotal = 0x1p63;
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
+    }
+  return "unknown CPU";
+}
+
+cpu::DensityMap copy_map(const DensityMapView& view) {
+  return {{view.texels.begin(), view.texels.end()}, view.width, view.height, view.addressing,
+          view.scale};
+}
+
+class Stopwatch {
+ public:
+  double lap_ms() {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
+    last_ = now;
+    return ms;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+void validate_request(const FrameRequest& request) {
+  if (request.target_count &&
+      !(std::isfinite(*request.target_count) && *request.target_count >= 0 &&
+        *request.target_count <= kMaxTotal))
+    throw std::invalid_argument("target count " + std::to_string(*request.target_count) +
+                                " is not in [0, 2^63]");
+  if (request.max_tries == 0) throw std::invalid_argument("max_tries must be at least 1");
+}
+
+class CpuSampler final : public Sampler {
+ public:
+  CpuSampler(const MeshView& mesh, std::span<const DensityMapView> maps, const CpuOptions& options)
+      : threads_(options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency())),
+        arena_(int(threads_)),
+        device_(cpu_model()) {
+    validate_mesh(mesh, maps.size());
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+      validate_map(maps[i], i);
+      maps_.push_back(copy_map(maps[i]));
+    }
+    triangles_ = cpu::make_triangle_records(mesh, maps.size());
+    texel_triangles_.resize(triangles_.size());
+    arena_.execute([&] { update_texel_triangles(kAllMaps); });
+  }
+
+  std::string backend() const override { return "cpu"; }
+  std::string device() const override { return device_; }
+  unsigned threads() const override { return threads_; }
+  std::uint64_t triangle_count() const override { return triangles_.size(); }
+  std::size_t map_count() const override { return maps_.size(); }
+
+  void update_map(std::size_t index, const DensityMapView& map) override {
+    if (index >= maps_.size())
+      throw std::out_of_range("density map " + std::to_string(index) + " does not exist (" +
+                              std::to_string(maps_.size()) + " maps)");
+    validate_map(map, index);
+    maps_[index] = copy_map(map);
+    arena_.execute([&] { update_texel_triangles(index); });
+  }
+
+  float density(std::uint32_t triangle, float b1, float b2) const override {
+    if (triangle >= texel_triangles_.size())
+      throw std::out_of_range("triangle " + std::to_string(triangle) + " does not exist");
+    return cpu::texel_triangle_density(texel_triangles_[triangle], maps_, b1, b2);
+  }
+
+  void generate(const FrameRequest& request, Frame& frame) override {
+    validate_request(request);
+    frame.passes.clear();
+    frame.method = request.method;
+    frame.candidates = frame.exhausted = 0;
+    frame.expected_total = std::numeric_limits<double>::quiet_NaN();
+    Stopwatch total, pass;
+    arena_.execute([&] {
+      if (request.method == Method::trs)
+        generate_trs(request, frame, pass);
+      else
+        generate_rejection(request, frame, pass);
+    });
+    frame.total_ms = total.lap_ms();
+  }
+
+ private:
+  static constexpr std::size_t kAllMaps = ~std::size_t(0);
+
+  /// Texel-space triangles depend on their map's size: rebuilt when a map is replaced.
+  void update_texel_triangles(std::size_t map) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles_.size(), 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i != r.end(); ++i)
+                          if (map == kAllMaps || triangles_[i].map == map)
+                            texel_triangles_[i] = cpu::make_texel_triangle(triangles_[i], maps_);
+                      });
+  }
+
+  void counting_pass(Frame& frame, Stopwatch& pass) {
+    const double total = cpu::count(triangles_, texel_triangles_, maps_, frame.expected_counts,
+                                    frame.max_density);
+    if (!(total <= kMaxTotal))
+      throw std::overflow_error("the density integrates to " + std::to_string(total) +
+                                " samples, more than 2^63; lower the density scale or set a target");
+    frame.expected_total = total;
+    frame.passes.push_back({"counting", pass.lap_ms()});
+  }
+
+  void generate_trs(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
+    counting_pass(frame, pass);
+
+    const double expected = frame.expected_total;
+    const double scale = request.target_count ? (expected > 0 ? *request.target_count / expected : 0) : 1;
+    frame.sample_count = cpu::round_counts(frame.expected_counts.span(), scale,
+                                           stream_key(request.seed, Stream::rounding), frame.counts);
+    frame.passes.push_back({"rounding", pass.lap_ms()});
+
+    const std::uint64_t n = frame.counts.size();
+    const bool fits = cpu::unordered_scan_fits(n, frame.sample_count);
+    if (request.scan == ScanOrder::unordered && !fits)
+      throw std::overflow_error(std::to_string(n) + " triangles and " +
+                                std::to_string(frame.sample_count) +
+                                " samples do not fit one 64-bit packed counter; use the ordered scan");
+    frame.scan_used = request.scan == ScanOrder::ordered || !fits ? ScanOrder::ordered : ScanOrder::unordered;
+    if (frame.scan_used == ScanOrder::unordered)
+      cpu::unordered_scan(frame.counts.span(), frame.sample_count, kScanBlock, frame.cdf,
+                          frame.inverse_permutation);
+    else
+      cpu::ordered_scan(frame.counts.span(), frame.cdf, frame.inverse_permutation);
+    frame.passes.push_back({"scan", pass.lap_ms()});
+
+    if (!request.realize) {
+      frame.samples.resize(0);
+      return;
+    }
+    const cpu::RealizationResult r = cpu::realize(
+        texel_triangles_, maps_, frame.max_density.span(), frame.cdf.span(),
+        frame.inverse_permutation.span(), stream_key(request.seed, Stream::realization),
+        request.max_tries, frame.samples);
+    frame.candidates = r.candidates;
+    frame.exhausted = r.exhausted;
+    frame.passes.push_back({"realization", pass.lap_ms()});
+  }
+
+  void generate_rejection(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
+    for (auto* b : {&frame.counts, &frame.cdf}) b->resize(0);
+    frame.inverse_permutation.resize(0);
+    frame.expected_counts.resize(0);
+    frame.max_density.resize(0);
+    double target;
+    if (request.target_count) {
+      target = *request.target_count;
+    } else {
+      counting_pass(frame, pass);  // Algorithm 1 needs N: without a target it is N-bar
+      target = frame.expected_total;
+    }
+    const float bound = cpu::rejection_distribution(triangles_, maps_, area_cdf_);
+    frame.passes.push_back({"distribution", pass.lap_ms()});
+
+    // N = target rounded stochastically, so that E[N] = target as with TRS.
+    const PhiloxCounter u = philox4x32({0xffffffffu, 0, 0, 0}, stream_key(request.seed, Stream::rounding));
+    const double whole = std::floor(target);
+    const bool empty = !(bound > 0) || area_cdf_.empty() || !(area_cdf_[area_cdf_.size() - 1] > 0);
+    frame.sample_count = empty ? 0 : std::uint64_t(whole) + (uniform_double(u[0]) < target - whole);
+    frame.scan_used = ScanOrder::ordered;
+    if (!request.realize) {
+      frame.samples.resize(0);
+      return;
+    }
+    const cpu::RealizationResult r = cpu::rejection_sample(
+        texel_triangles_, maps_, area_cdf_.span(), bound, frame.sample_count,
+        stream_key(request.seed, Stream::rejection), request.max_tries, frame.samples);
+    frame.candidates = r.candidates;
+    frame.exhausted = r.exhausted;
+    frame.passes.push_back({"realization", pass.lap_ms()});
+  }
+
+  unsigned threads_;
+  tbb::task_arena arena_;
+  std::string device_;
+  std::vector<cpu::DensityMap> maps_;
+  std::vector<cpu::TriangleRecord> triangles_;
+  std::vector<cpu::TexelTriangle> texel_triangles_;  ///< kept in step with the maps
+  Buffer<double> area_cdf_;
+};
+
+}  // namespace
+
+std::unique_ptr<Sampler> make_cpu_sampler(const MeshView& mesh, std::span<const DensityMapView> maps,
+                                          const CpuOptions& options) {
+  return std::make_unique<CpuSampler>(mesh, maps, options);
+}
+
+}  // namespace lightsampler

@@ -1,0 +1,41 @@
+#pragma once
+// Density maps as the CPU backend stores them, and the one texel lookup that the counting pass,
+// the realization pass and Sampler::density all use.
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "lightsampler/mesh.h"
+
+namespace lightsampler::cpu {
+
+struct DensityMap {
+  std::vector<float> texels;
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  Addressing addressing = Addressing::wrap;
+  float scale = 1.0f;
+};
+
+/// Texel index along one axis for lattice cell i (any integer) of a map n texels wide.
+inline std::uint32_t address(std::int64_t i, std::uint32_t n, Addressing addressing) {
+  if (std::uint64_t(i) < n) return std::uint32_t(i);  // the common case: inside the map
+  if (addressing == Addressing::clamp) return i < 0 ? 0u : n - 1;
+  const std::int64_t r = i % std::int64_t(n);
+  return std::uint32_t(r < 0 ? r + n : r);
+}
+
+/// Density of lattice cell (ix, iy): texel value times the map's scale.
+inline float cell_density(const DensityMap& map, std::int64_t ix, std::int64_t iy) {
+  return map.texels[std::size_t(address(iy, map.height, map.addressing)) * map.width +
+                    address(ix, map.width, map.addressing)] *
+         map.scale;
+}
+
+/// Density at a point given in texel units (u * width, v * height): nearest texel.
+inline float point_density(const DensityMap& map, float x, float y) {
+  return cell_density(map, std::int64_t(std::floor(x)), std::int64_t(std::floor(y)));
+}
+
+}  // namespace lightsampler::cpu

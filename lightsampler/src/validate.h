@@ -1,0 +1,20 @@
+#pragma once
+// Input checks shared by every backend: bad input is a clear exception, never a crash.
+
+#include <span>
+
+#include "lightsampler/mesh.h"
+
+namespace lightsampler {
+
+/// Throws std::invalid_argument naming the first problem (what and where), or std::length_error
+/// for 2^32 triangles or more.
+void validate_mesh(const MeshView& mesh, std::size_t map_count);
+
+/// Throws std::invalid_argument naming the map and the first bad texel.
+void validate_map(const DensityMapView& map, std::size_t index);
+
+/// Throws std::length_error when a mesh of this many triangles cannot be addressed by a Sample.
+void validate_triangle_count(std::uint64_t triangles);
+
+}  // namespace lightsampler

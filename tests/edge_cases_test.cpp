@@ -1,0 +1,236 @@
+// Defined behaviour on degenerate and bad input (DESIGN.md, "Degenerate input").
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <tuple>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "lightsampler/sampler.h"
+#include "sampler_fixtures.h"
+#include "validate.h"
+
+using namespace lightsampler;
+using trs_test::Map;
+using trs_test::Mesh;
+
+namespace {
+
+Frame run(const Mesh& mesh, const std::vector<Map>& maps, FrameRequest request = {},
+          CpuOptions options = {}) {
+  std::vector<DensityMapView> views;
+  for (const Map& m : maps) views.push_back(m.view());
+  auto sampler = make_cpu_sampler(mesh.view(), views, options);
+  Frame frame;
+  sampler->generate(request, frame);
+  return frame;
+}
+
+std::string error_of(const Mesh& mesh, const std::vector<Map>& maps) {
+  std::vector<DensityMapView> views;
+  for (const Map& m : maps) views.push_back(m.view());
+  try {
+    make_cpu_sampler(mesh.view(), views);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+FrameRequest target(double n, std::uint64_t seed = 0) {
+  FrameRequest r;
+  r.target_count = n;
+  r.seed = seed;
+  return r;
+}
+
+}  // namespace
+
+TEST(EdgeCases, ZeroWorldAreaTriangleGetsNoSamples) {
+  Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
+  const float flat[3][3] = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2}};  // collinear in world space
+  const float uv[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+  mesh.add_triangle(flat, uv);
+  const Frame f = run(mesh, {Map{{1.0f}, 1, 1}}, target(1000));
+  EXPECT_EQ(f.expected_counts[2], 0.0);
+  EXPECT_EQ(f.counts[2], 0u);
+  for (const Sample& s : f.samples) EXPECT_NE(s.triangle, 2u);
+}
+
+TEST(EdgeCases, ZeroUvAreaTriangleHasTheDensityOfItsUvPoint) {
+  // All three UVs on one point (a mesh exported without UVs): constant density, that texel's.
+  Mesh mesh;
+  const float p[3][3] = {{0, 0, 0}, {2, 0, 0}, {0, 3, 0}};  // world area 3
+  const float uv[3][2] = {{0.6f, 0.1f}, {0.6f, 0.1f}, {0.6f, 0.1f}};
+  mesh.add_triangle(p, uv);
+  const Map map{{1, 2, 5, 7}, 4, 1};  // u = 0.6 reads texel 2
+  const Frame f = run(mesh, {map}, target(500));
+  EXPECT_NEAR(f.expected_total, 15.0, 1e-5);
+  EXPECT_EQ(f.max_density[0], 5.0f);
+  EXPECT_EQ(f.candidates, f.sample_count) << "constant density: every candidate is accepted";
+}
+
+TEST(EdgeCases, InvalidTexelsAreRejectedNamingTheTexel) {
+  const Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
+  for (auto [value, word] : {std::tuple{std::numeric_limits<float>::quiet_NaN(), "NaN"},
+                             std::tuple{-1.0f, "negative"},
+                             std::tuple{std::numeric_limits<float>::infinity(), "infinite"}}) {
+    Map map{std::vector<float>(6, 1.0f), 3, 2};
+    map.texels[4] = value;  // texel (1, 1)
+    const std::string message = error_of(mesh, {map});
+    EXPECT_NE(message.find("density map 0: texel (1, 1)"), std::string::npos) << message;
+    EXPECT_NE(message.find(word), std::string::npos) << message;
+  }
+}
+
+TEST(EdgeCases, WrapReadsTheSameTexelsOneTileAway) {
+  const Map map = trs_test::random_map(8, 8, 0.2, 1);
+  const Frame inside = run(trs_test::quad(1, 1, 0.1f, 0.2f, 0.7f, 0.9f), {map}, {.realize = false});
+  const Frame shifted = run(trs_test::quad(1, 1, 2.1f, -0.8f, 2.7f, -0.1f), {map}, {.realize = false});
+  EXPECT_NEAR(inside.expected_total, shifted.expected_total, 1e-6 * inside.expected_total);
+}
+
+TEST(EdgeCases, ClampReadsTheBorderTexelBeyondTheMap) {
+  Map map{{1, 2, 3, 4}, 2, 2};
+  map.addressing = Addressing::clamp;
+  // UVs in [1.5, 3]^2 read texel (1, 1) = 4 everywhere: N-bar = 4 * area 2.
+  const Frame f = run(trs_test::quad(2, 1, 1.5f, 1.5f, 3, 3), {map}, target(100));
+  EXPECT_NEAR(f.expected_total, 8.0, 1e-9);
+  EXPECT_EQ(f.candidates, f.sample_count);
+}
+
+TEST(EdgeCases, AllZeroMapGivesNoSamplesWithOrWithoutTarget) {
+  const Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
+  const Map zero{std::vector<float>(16, 0.0f), 4, 4};
+  for (Method method : {Method::trs, Method::rejection}) {
+    for (FrameRequest request : {FrameRequest{}, target(1e6)}) {
+      request.method = method;
+      const Frame f = run(mesh, {zero}, request);
+      EXPECT_EQ(f.sample_count, 0u) << to_string(method);
+      EXPECT_TRUE(f.samples.empty());
+    }
+  }
+}
+
+TEST(EdgeCases, SingleTexelMapIsUniform) {
+  const Frame f = run(trs_test::quad(2, 2, 0, 0, 1, 1), {Map{{3.0f}, 1, 1}}, target(1000));
+  EXPECT_NEAR(f.expected_total, 12.0, 1e-9);
+  EXPECT_EQ(f.candidates, f.sample_count);
+}
+
+TEST(EdgeCases, MeshWithoutMapsHasZeroDensity) {
+  const Frame none = run(trs_test::quad(1, 1, 0, 0, 1, 1), {}, target(100));
+  EXPECT_EQ(none.expected_total, 0.0);
+  EXPECT_EQ(none.sample_count, 0u);
+
+  Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
+  mesh.triangle_maps = {kNoMap, 0};  // only the second triangle has a map
+  const Frame half = run(mesh, {Map{{1.0f}, 1, 1}}, target(100));
+  EXPECT_EQ(half.counts[0], 0u);
+  EXPECT_EQ(half.counts[1], 100u);
+}
+
+TEST(EdgeCases, SeveralMapsOneSampler) {
+  Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
+  mesh.triangle_maps = {1, 0};
+  const Frame f = run(mesh, {Map{{1.0f}, 1, 1}, Map{{3.0f}, 1, 1}}, {.realize = false});
+  EXPECT_NEAR(f.expected_counts[0], 1.5, 1e-12);
+  EXPECT_NEAR(f.expected_counts[1], 0.5, 1e-12);
+}
+
+TEST(EdgeCases, BadMeshesAreRejectedWithWhatAndWhere) {
+  Mesh bad_index = trs_test::quad(1, 1, 0, 0, 1, 1);
+  bad_index.indices[4] = 9;
+  EXPECT_NE(error_of(bad_index, {}).find("triangle 1 uses vertex 9"), std::string::npos);
+
+  Mesh bad_map = trs_test::quad(1, 1, 0, 0, 1, 1);
+  bad_map.triangle_maps = {0, 3};
+  EXPECT_NE(error_of(bad_map, {Map{{1.0f}, 1, 1}}).find("triangle 1 uses density map 3"), std::string::npos);
+
+  Mesh nan_uv = trs_test::quad(1, 1, 0, 0, 1, 1);
+  nan_uv.uvs[5] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(error_of(nan_uv, {}).find("uv of vertex 2 is not finite"), std::string::npos);
+
+  Mesh short_uvs = trs_test::quad(1, 1, 0, 0, 1, 1);
+  short_uvs.uvs.resize(6);
+  EXPECT_NE(error_of(short_uvs, {}).find("4 positions but 3 uvs"), std::string::npos);
+
+  EXPECT_NE(error_of(trs_test::quad(1, 1, 0, 0, 1, 1), {Map{{1.0f, 2.0f}, 3, 1}}).find("2 texels for 3x1"),
+            std::string::npos);
+}
+
+TEST(EdgeCases, TwoToThe32TrianglesAreRefused) {
+  EXPECT_NO_THROW(validate_triangle_count(0xffffffffull));
+  EXPECT_THROW(validate_triangle_count(0x100000000ull), std::length_error);
+}
+
+TEST(EdgeCases, BadTargetsAreRejected) {
+  const Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), 1e30})
+    EXPECT_THROW(run(mesh, {Map{{1.0f}, 1, 1}}, target(bad)), std::invalid_argument);
+}
+
+TEST(EdgeCases, ExhaustedSamplesAreCounted) {
+  // One bright texel among zeros: with a single try most samples cannot be accepted.
+  Map map{std::vector<float>(64, 0.0f), 8, 8};
+  map.texels[9] = 1.0f;
+  FrameRequest request = target(1000);
+  request.max_tries = 1;
+  const Frame f = run(trs_test::quad(1, 1, 0, 0, 1, 1), {map}, request);
+  EXPECT_GT(f.exhausted, 0u);
+  EXPECT_EQ(f.candidates, f.sample_count) << "exactly one try each";
+}
+
+TEST(EdgeCases, UpdatedMapChangesTheNextFrame) {
+  const Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
+  const Map left{{1.0f, 0.0f}, 2, 1}, right{{0.0f, 1.0f, 0.0f, 1.0f}, 2, 2};
+  const DensityMapView view = left.view();
+  auto sampler = make_cpu_sampler(mesh.view(), {&view, 1});
+  Frame frame;
+  sampler->generate(target(2000, 1), frame);
+  for (const Sample& s : frame.samples) ASSERT_LT(lightsampler::uv(mesh.view(), s).x, 0.5f);
+  EXPECT_EQ(sampler->density(0, 0.0f, 0.0f), 1.0f);  // vertex 0 at uv (0, 0)
+
+  sampler->update_map(0, right.view());  // a new size too
+  sampler->generate(target(2000, 2), frame);
+  for (const Sample& s : frame.samples) ASSERT_GE(lightsampler::uv(mesh.view(), s).x, 0.5f);
+  EXPECT_EQ(sampler->density(0, 0.0f, 0.0f), 0.0f);
+  EXPECT_THROW(sampler->update_map(1, right.view()), std::out_of_range);
+}
+
+TEST(EdgeCases, SameSeedSameSamplesOnAnyThreadCount) {
+  const Mesh mesh = trs_test::random_triangles(500, 0.0f, 1.0f, 3);
+  const Map map = trs_test::random_map(64, 64, 0.5, 4);
+  auto sorted_samples = [&](unsigned threads, ScanOrder scan) {
+    FrameRequest request = target(200000, 42);
+    request.scan = scan;
+    const Frame f = run(mesh, {map}, request, {threads});
+    std::vector<std::tuple<std::uint32_t, float, float>> v;
+    for (const Sample& s : f.samples) v.emplace_back(s.triangle, s.b1, s.b2);
+    return v;
+  };
+  auto ordered = sorted_samples(1, ScanOrder::ordered);
+  // The ordered scan fixes the output order: identical arrays.
+  EXPECT_EQ(ordered, sorted_samples(2, ScanOrder::ordered));
+  // The unordered scan permutes triangles' blocks, never the set of samples.
+  auto unordered = sorted_samples(2, ScanOrder::unordered);
+  std::sort(ordered.begin(), ordered.end());
+  std::sort(unordered.begin(), unordered.end());
+  EXPECT_EQ(ordered, unordered);
+}
+
+TEST(EdgeCases, SampleHelpersReadTheMesh) {
+  const Mesh mesh = trs_test::quad(2, 4, 0, 0, 1, 1);
+  const Sample s{1, 0.25f, 0.5f};  // triangle (v0, v2, v3)
+  const Float3 p = position(mesh.view(), s);
+  EXPECT_FLOAT_EQ(p.x, 0.5f);
+  EXPECT_FLOAT_EQ(p.y, 3.0f);
+  const Float2 t = lightsampler::uv(mesh.view(), s);
+  EXPECT_FLOAT_EQ(t.x, 0.25f);
+  EXPECT_FLOAT_EQ(t.y, 0.75f);
+  const Float3 n = geometric_normal(mesh.view(), s);
+  EXPECT_FLOAT_EQ(n.z, 1.0f);
+}
