@@ -28,9 +28,11 @@ Real edge_term(Real xa, Real ya, Real xb, Real yb, Real w, Real h) {
   const Real y_lo = std::max(std::min(ya, yb), Real(0));
   const Real y_hi = std::min(std::max(ya, yb), h);
   if (!(y_lo < y_hi)) return 0;
-  const Real slope = (xb - xa) / (yb - ya);
-  const Real x_lo = xa + (y_lo - ya) * slope;
-  const Real x_hi = xa + (y_hi - ya) * slope;
+  // Interpolate by the fraction of the y-span (in [0, 1]), not by a slope: dx/dy overflows for a
+  // nearly flat edge, and 0 * inf would make the whole overlap NaN.
+  const Real dx = xb - xa, span = yb - ya;
+  const Real x_lo = xa + dx * ((y_lo - ya) / span);
+  const Real x_hi = xa + dx * ((y_hi - ya) / span);
   const Real dy = y_hi - y_lo;
   // clamp(t, 0, w) - w/2 = (|t| - |t - w|) / 2, with t the part of [0, w] left of the edge.
   const Real term = integral_abs_linear(x_lo, x_hi, dy) - integral_abs_linear(x_lo - w, x_hi - w, dy);

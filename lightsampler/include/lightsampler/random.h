@@ -41,7 +41,8 @@ inline std::uint64_t mix64(std::uint64_t z) {
 }
 
 inline PhiloxKey stream_key(std::uint64_t seed, Stream stream) {
-  const std::uint64_t k = mix64(seed + 0x9E3779B97F4A7C15ull * (std::uint64_t(stream) + 1));
+  // Hash the seed first: seeds that differ by a constant must not alias another stream's key.
+  const std::uint64_t k = mix64(mix64(seed) + 0x9E3779B97F4A7C15ull * std::uint64_t(stream));
   return {std::uint32_t(k), std::uint32_t(k >> 32)};
 }
 

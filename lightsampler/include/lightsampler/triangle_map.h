@@ -19,7 +19,9 @@ inline Barycentrics triangle_map(float u0, float u1) {
     t1 = 0.5f * u1;
     t0 = u0 - t1;
   }
-  return {t1, 1.0f - t0 - t1};
+  // b2 = 1 - t0 - t1 = 1 - max(u0, u1), computed exactly: 1 - t0 - t1 in float can round to
+  // b1 + b2 > 1, a point just outside the triangle.
+  return {t1, 1.0f - (u0 < u1 ? u1 : u0)};
 }
 
 }  // namespace lightsampler

@@ -57,8 +57,9 @@ bool strip_extent(const double x[3], const double y[3], double ya, double yb, do
       xmax = std::max({xmax, x[k], x[j]});
       continue;
     }
-    const double s = (x[j] - x[k]) / (y[j] - y[k]);
-    const double xl = x[k] + (lo - y[k]) * s, xh = x[k] + (hi - y[k]) * s;
+    // By fraction of the y-span, not slope: dx/dy overflows for a nearly flat edge.
+    const double dx = x[j] - x[k], span = y[j] - y[k];
+    const double xl = x[k] + dx * ((lo - y[k]) / span), xh = x[k] + dx * ((hi - y[k]) / span);
     xmin = std::min({xmin, xl, xh});
     xmax = std::max({xmax, xl, xh});
   }

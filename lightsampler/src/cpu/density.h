@@ -33,9 +33,15 @@ inline float cell_density(const DensityMap& map, std::int64_t ix, std::int64_t i
          map.scale;
 }
 
+/// floor(x) as an integer, without the libm call or emulation of baseline x86-64.
+inline std::int64_t floor_to_int(float x) {
+  const auto i = std::int64_t(x);  // truncates toward zero
+  return i - (float(i) > x ? 1 : 0);
+}
+
 /// Density at a point given in texel units (u * width, v * height): nearest texel.
 inline float point_density(const DensityMap& map, float x, float y) {
-  return cell_density(map, std::int64_t(std::floor(x)), std::int64_t(std::floor(y)));
+  return cell_density(map, floor_to_int(x), floor_to_int(y));
 }
 
 }  // namespace lightsampler::cpu

@@ -13,6 +13,24 @@ namespace {
 
 // Samples per task: large enough that the binary search that starts a task is amortised.
 constexpr std::size_t kSamplesPerTask = 1 << 14;
+// Samples whose first candidates are drawn together: independent work that the processor
+// overlaps, instead of one long dependent chain (RNG, map, lookup, test) per sample.
+constexpr int kBatch = 16;
+
+struct Candidate {
+  Barycentrics b;
+  bool accepted;
+};
+
+Candidate draw(const TexelTriangle& t, const DensityMap& map, float bound, std::uint32_t tri,
+               std::uint64_t rank, std::uint32_t attempt, PhiloxKey key) {
+  const PhiloxCounter u =
+      philox4x32({tri, std::uint32_t(rank), std::uint32_t(rank >> 32), attempt}, key);
+  const Barycentrics b = triangle_map(uniform_float(u[0]), uniform_float(u[1]));
+  const float d = point_density(map, t.origin[0] + b.b1 * t.edge1[0] + b.b2 * t.edge2[0],
+                                t.origin[1] + b.b1 * t.edge1[1] + b.b2 * t.edge2[1]);
+  return {b, uniform_float(u[2]) * bound < d};
+}
 
 }  // namespace
 
@@ -31,27 +49,29 @@ RealizationResult realize(std::span<const TexelTriangle> triangles,
         std::size_t p = std::size_t(std::upper_bound(cdf.begin(), cdf.end(), r.begin()) - cdf.begin());
         std::uint64_t begin = p == 0 ? 0 : cdf[p - 1];
         std::uint64_t tries = 0, gave_up = 0;
-        for (std::uint64_t i = r.begin(); i != r.end(); ++i) {
-          while (i >= cdf[p]) begin = cdf[p++];
-          const std::uint32_t tri = inverse_permutation[p];
-          const std::uint64_t rank = i - begin;
-          const TexelTriangle& t = triangles[tri];
-          const DensityMap& map = maps[t.map];
-          const float bound = max_density[tri];
-          for (std::uint32_t attempt = 0;;) {
-            const PhiloxCounter u = philox4x32(
-                {tri, std::uint32_t(rank), std::uint32_t(rank >> 32), attempt}, key);
-            const Barycentrics b = triangle_map(uniform_float(u[0]), uniform_float(u[1]));
-            const float d = point_density(map, t.origin[0] + b.b1 * t.edge1[0] + b.b2 * t.edge2[0],
-                                          t.origin[1] + b.b1 * t.edge1[1] + b.b2 * t.edge2[1]);
-            ++attempt;
-            const bool accepted = uniform_float(u[2]) * bound < d;
-            if (accepted || attempt == max_tries) {
-              samples[i] = {tri, b.b1, b.b2};
-              gave_up += accepted ? 0 : 1;
-              tries += attempt;
-              break;
-            }
+        std::uint32_t tri[kBatch];
+        std::uint64_t rank[kBatch];
+        Candidate first[kBatch];
+        for (std::uint64_t i0 = r.begin(); i0 < r.end(); i0 += kBatch) {
+          const int lanes = int(std::min<std::uint64_t>(kBatch, r.end() - i0));
+          for (int k = 0; k < lanes; ++k) {
+            while (i0 + k >= cdf[p]) begin = cdf[p++];
+            tri[k] = inverse_permutation[p];
+            rank[k] = i0 + k - begin;
+          }
+          for (int k = 0; k < lanes; ++k) {
+            const TexelTriangle& t = triangles[tri[k]];
+            first[k] = draw(t, maps[t.map], max_density[tri[k]], tri[k], rank[k], 0, key);
+          }
+          for (int k = 0; k < lanes; ++k) {
+            const TexelTriangle& t = triangles[tri[k]];
+            Candidate c = first[k];
+            std::uint32_t attempt = 1;
+            for (; !c.accepted && attempt < max_tries; ++attempt)
+              c = draw(t, maps[t.map], max_density[tri[k]], tri[k], rank[k], attempt, key);
+            samples[i0 + k] = {tri[k], c.b.b1, c.b.b2};
+            gave_up += c.accepted ? 0 : 1;
+            tries += attempt;
           }
         }
         candidates.fetch_add(tries, std::memory_order_relaxed);
