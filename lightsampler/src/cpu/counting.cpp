@@ -78,6 +78,16 @@ struct Accumulator {
 struct TexelSpaceTriangle {
   double x[3], y[3];
   double xmin, xmax, ymin, ymax;
+  double edge[3][3];  ///< a x + b y + c >= 0 inside, for each edge
+
+  /// Whether the rectangle lies inside the triangle: its four corners do (the triangle is convex).
+  bool contains(double xa, double ya, double xb, double yb) const {
+    for (const auto& e : edge) {
+      const double lo_x = e[0] >= 0 ? xa : xb, lo_y = e[1] >= 0 ? ya : yb;  // the corner most outside
+      if (e[0] * lo_x + e[1] * lo_y + e[2] < 0) return false;
+    }
+    return true;
+  }
 };
 
 Accumulator integrate_rows(const TexelSpaceTriangle& t, const DensityMap& map, std::int64_t row0,
@@ -93,7 +103,9 @@ Accumulator integrate_rows(const TexelSpaceTriangle& t, const DensityMap& map, s
     for (std::int64_t ix = cols.first; ix <= cols.last; ++ix) {
       double xa, xb;
       cell_bounds(ix, map.width, map.addressing, t.xmin, t.xmax, xa, xb);
-      const double overlap = rect_triangle_overlap(a, b, c, xa, ya, xb, yb);
+      // Interior cells (most cells of a large triangle) overlap fully: no formula needed.
+      const double overlap = t.contains(xa, ya, xb, yb) ? (xb - xa) * (yb - ya)
+                                                        : rect_triangle_overlap(a, b, c, xa, ya, xb, yb);
       if (!(overlap > 0)) continue;
       const float d = cell_density(map, ix, iy);
       acc.sum += double(d) * overlap;
@@ -123,8 +135,16 @@ TriangleIntegral integrate_triangle(const TriangleRecord& triangle, const TexelT
   t.xmax = std::max({t.x[0], t.x[1], t.x[2]});
   t.ymin = std::min({t.y[0], t.y[1], t.y[2]});
   t.ymax = std::max({t.y[0], t.y[1], t.y[2]});
-  const double uv_area =
-      0.5 * std::abs((t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.y[1] - t.y[0]) * (t.x[2] - t.x[0]));
+  const double cross = (t.x[1] - t.x[0]) * (t.y[2] - t.y[0]) - (t.y[1] - t.y[0]) * (t.x[2] - t.x[0]);
+  const double uv_area = 0.5 * std::abs(cross);
+  for (int k = 0; k < 3; ++k) {
+    // Left of a counter-clockwise edge is inside; flip for clockwise triangles.
+    const int j = (k + 1) % 3;
+    const double sign = cross > 0 ? 1 : -1;
+    t.edge[k][0] = -sign * (t.y[j] - t.y[k]);
+    t.edge[k][1] = sign * (t.x[j] - t.x[k]);
+    t.edge[k][2] = -(t.edge[k][0] * t.x[k] + t.edge[k][1] * t.y[k]);
+  }
   const CellRange rows = cell_range(t.ymin, t.ymax, map.height, map.addressing);
   const CellRange cols = cell_range(t.xmin, t.xmax, map.width, map.addressing);
   if (rows.first == rows.last && cols.first == cols.last) {
