@@ -9,6 +9,9 @@ packages=(
   # renderer and image stack
   libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
   libtbb-dev libglm-dev
+  # Debian's Imath CMake package names the Python binding's library; without it every configure
+  # warns about a missing file
+  python3-imath
   # Vulkan backend: loader, headers, shader compiler, software device for tests
   libvulkan-dev glslang-tools spirv-tools mesa-vulkan-drivers vulkan-validationlayers
   # small libraries

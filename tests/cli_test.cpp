@@ -1,0 +1,482 @@
+// End-to-end tests of the trs-sample command line: the tool runs as a subprocess on small inputs
+// written by each test into a fresh temporary directory (meshes by hand, images with
+// OpenImageIO), and the tests read back its exit status, stdout, stderr and output files.
+
+#include <OpenImageIO/imageio.h>
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int status = -1;  ///< exit status, or -signal if the tool crashed
+  std::string out;
+  std::string err;
+};
+
+struct PlySample {
+  float x, y, z, u, v;
+  std::uint32_t triangle;
+  float b1, b2;
+};
+static_assert(sizeof(PlySample) == 32);
+
+struct PlyFile {
+  std::string header;
+  std::vector<PlySample> samples;
+};
+
+std::string read_file(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_file(const fs::path& file, const std::string& bytes) {
+  std::ofstream out(file, std::ios::binary);
+  out << bytes;
+  ASSERT_TRUE(out.good()) << file;
+}
+
+PlyFile read_ply(const fs::path& file) {
+  const std::string bytes = read_file(file);
+  const std::string end = "end_header\n";
+  const std::size_t header_end = bytes.find(end);
+  PlyFile ply;
+  if (header_end == std::string::npos) return ply;
+  ply.header = bytes.substr(0, header_end + end.size());
+  const std::size_t body = bytes.size() - ply.header.size();
+  ply.samples.resize(body / sizeof(PlySample));
+  std::memcpy(ply.samples.data(), bytes.data() + ply.header.size(),
+              ply.samples.size() * sizeof(PlySample));
+  return ply;
+}
+
+std::string expected_ply_header(std::uint64_t count, bool obj_convention) {
+  return std::string("ply\n") +
+         "format binary_little_endian 1.0\n"
+         "comment samples of trs-sample; uv: v = 0 at the image's " +
+         (obj_convention ? "bottom row (OBJ convention)" : "top row (glTF convention)") +
+         "\n"
+         "element vertex " +
+         std::to_string(count) +
+         "\n"
+         "property float x\n"
+         "property float y\n"
+         "property float z\n"
+         "property float u\n"
+         "property float v\n"
+         "property uint triangle\n"
+         "property float b1\n"
+         "property float b2\n"
+         "end_header\n";
+}
+
+// A unit quad in the z = 0 plane whose UVs equal its (x, y) positions.
+const char* kQuadObj =
+    "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+    "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+    "f 1/1 2/2 3/3 4/4\n";
+
+/// The same quad as glTF buffer contents: 4 float positions, 4 float UVs, 6 uint16 indices.
+std::string quad_gltf_buffer() {
+  const float positions[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  const float uvs[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+  const std::uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
+  std::string bytes(sizeof positions + sizeof uvs + sizeof indices, '\0');
+  std::memcpy(bytes.data(), positions, sizeof positions);
+  std::memcpy(bytes.data() + sizeof positions, uvs, sizeof uvs);
+  std::memcpy(bytes.data() + sizeof positions + sizeof uvs, indices, sizeof indices);
+  return bytes;
+}
+
+/// The quad's glTF document, its node translated by (10, 0, 0); `buffer` is the buffer object.
+std::string quad_gltf_json(const std::string& buffer) {
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0, "translation": [10, 0, 0]}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2}]}],
+  "buffers": [)" +
+         buffer + R"(],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                  {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                  {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+    {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
+}
+
+/// A binary glTF: header, JSON chunk (padded with spaces), BIN chunk (padded with zeros).
+std::string make_glb(std::string json, std::string bin) {
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  bin.resize((bin.size() + 3) / 4 * 4, '\0');
+  auto u32 = [](std::uint32_t value) {
+    return std::string(reinterpret_cast<const char*>(&value), 4);
+  };
+  const auto total = std::uint32_t(12 + 8 + json.size() + 8 + bin.size());
+  return "glTF" + u32(2) + u32(total) + u32(std::uint32_t(json.size())) + "JSON" + json +
+         u32(std::uint32_t(bin.size())) + std::string("BIN\0", 4) + bin;
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char pattern[] = "/tmp/trs-cli-test-XXXXXX";
+    ASSERT_NE(::mkdtemp(pattern), nullptr);
+    root_ = pattern;
+    fs::create_directory(work());
+  }
+
+  void TearDown() override { fs::remove_all(root_); }
+
+  /// Where inputs and outputs live; the tool's stdout and stderr are captured outside it, so
+  /// that a listing of it shows exactly what the tool left behind.
+  fs::path work() const { return root_ / "work"; }
+  fs::path file(const std::string& name) const { return work() / name; }
+
+  fs::path write_text(const std::string& name, const std::string& text) {
+    write_file(file(name), text);
+    return file(name);
+  }
+
+  /// Writes an image of `channels` channels from float values, stored as `format`.
+  fs::path write_image(const std::string& name, int width, int height, int channels,
+                       const std::vector<float>& pixels,
+                       OIIO::TypeDesc format = OIIO::TypeDesc::FLOAT) {
+    const fs::path path = file(name);
+    auto out = OIIO::ImageOutput::create(path.string());
+    EXPECT_TRUE(out) << OIIO::geterror();
+    if (!out) return path;
+    const OIIO::ImageSpec spec(width, height, channels, format);
+    EXPECT_TRUE(out->open(path.string(), spec)) << out->geterror();
+    EXPECT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) << out->geterror();
+    out->close();
+    return path;
+  }
+
+  /// A 4 x 4 single-channel float map, `value` in the top row (row 0), zero elsewhere.
+  fs::path write_top_row_map(const std::string& name, float value) {
+    std::vector<float> texels(16, 0.0f);
+    for (int x = 0; x < 4; ++x) texels[x] = value;
+    return write_image(name, 4, 4, 1, texels);
+  }
+
+  fs::path write_constant_map(const std::string& name, float value) {
+    return write_image(name, 4, 4, 1, std::vector<float>(16, value));
+  }
+
+  fs::path write_quad_gltf(const std::string& name) {
+    write_file(file("quad.bin"), quad_gltf_buffer());
+    return write_text(name, quad_gltf_json(R"({"uri": "quad.bin", "byteLength": 92})"));
+  }
+
+  RunResult run(const std::vector<std::string>& args) const {
+    const fs::path out_log = root_ / "stdout", err_log = root_ / "stderr";
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_log.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_log.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    std::vector<std::string> argv_strings = {TRS_SAMPLE_EXE};
+    argv_strings.insert(argv_strings.end(), args.begin(), args.end());
+    argv_strings.push_back("--threads");
+    argv_strings.push_back("2");
+    std::vector<char*> argv;
+    for (auto& a : argv_strings) argv.push_back(a.data());
+    argv.push_back(nullptr);
+
+    RunResult result;
+    pid_t pid = 0;
+    const int spawned = posix_spawn(&pid, TRS_SAMPLE_EXE, &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    EXPECT_EQ(spawned, 0) << std::strerror(spawned);
+    if (spawned != 0) return result;
+    int status = 0;
+    EXPECT_EQ(::waitpid(pid, &status, 0), pid);
+    result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+    result.out = read_file(out_log);
+    result.err = read_file(err_log);
+    return result;
+  }
+
+  std::set<std::string> listing() const {
+    std::set<std::string> names;
+    for (const auto& entry : fs::directory_iterator(work())) names.insert(entry.path().filename());
+    return names;
+  }
+
+  /// A failed run: status 1, the offending file named on stderr, nothing left behind.
+  void expect_failure_naming(const std::vector<std::string>& args, const fs::path& culprit) {
+    const std::set<std::string> before = listing();
+    const RunResult result = run(args);
+    EXPECT_EQ(result.status, 1) << result.err;
+    EXPECT_NE(result.err.find("trs-sample: error: " + culprit.string()), std::string::npos)
+        << result.err;
+    EXPECT_EQ(listing(), before);
+  }
+
+  fs::path root_;
+};
+
+nlohmann::json read_json(const fs::path& file) { return nlohmann::json::parse(read_file(file)); }
+
+TEST_F(CliTest, WritesPlyAndStatsThatAgree) {
+  const fs::path mesh = write_text("quad.obj", kQuadObj);
+  const fs::path map = write_constant_map("map.exr", 100.0f);
+  const RunResult result = run({mesh, map, "--count", "5e2", "--seed", "7", "--out", file("s.ply"),
+                                "--stats", file("s.json")});
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.out.find("quad.obj"), std::string::npos) << result.out;
+
+  const nlohmann::json stats = read_json(file("s.json"));
+  for (const char* key : {"expected_total", "sample_count", "candidates", "acceptance_rate",
+                          "exhausted", "method", "backend", "device", "threads", "seed",
+                          "target_count", "scan", "triangles", "map", "mesh", "ms"}) {
+    EXPECT_TRUE(stats.contains(key)) << key;
+  }
+  EXPECT_EQ(stats["mesh"], mesh.string());
+  EXPECT_EQ(stats["map"]["file"], map.string());
+  EXPECT_EQ(stats["map"]["width"], 4);
+  EXPECT_EQ(stats["map"]["height"], 4);
+  EXPECT_EQ(stats["triangles"], 2);
+  EXPECT_EQ(stats["method"], "trs");
+  EXPECT_EQ(stats["backend"], "cpu");
+  EXPECT_EQ(stats["threads"], 2);
+  EXPECT_EQ(stats["seed"], 7);
+  EXPECT_EQ(stats["target_count"], 500.0);
+  EXPECT_NEAR(stats["expected_total"].get<double>(), 100.0, 1e-3);
+  EXPECT_EQ(stats["exhausted"], 0);
+  EXPECT_TRUE(stats["ms"].contains("total"));
+  EXPECT_GE(stats["ms"].size(), 2u);
+
+  const auto count = stats["sample_count"].get<std::uint64_t>();
+  EXPECT_GT(count, 400u);
+  EXPECT_LT(count, 600u);
+  const PlyFile ply = read_ply(file("s.ply"));
+  EXPECT_EQ(ply.header, expected_ply_header(count, true));
+  EXPECT_EQ(fs::file_size(file("s.ply")), ply.header.size() + 32 * count);
+  ASSERT_EQ(ply.samples.size(), count);
+  for (const PlySample& s : ply.samples) {
+    ASSERT_LT(s.triangle, 2u);
+    ASSERT_GE(s.b1, 0.0f);
+    ASSERT_GE(s.b2, 0.0f);
+    ASSERT_LE(s.b1 + s.b2, 1.0f + 1e-6f);
+    ASSERT_NEAR(s.u, s.x, 1e-5f);  // the quad's UVs equal its positions, in the OBJ convention
+    ASSERT_NEAR(s.v, s.y, 1e-5f);
+  }
+}
+
+TEST_F(CliTest, WritesNothingWithoutOut) {
+  const fs::path mesh = write_text("quad.obj", kQuadObj);
+  const fs::path map = write_constant_map("map.exr", 100.0f);
+  const std::set<std::string> before = listing();
+  const RunResult result = run({mesh, map, "--count", "1e4"});
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(listing(), before);
+  EXPECT_NE(result.out.find("samples"), std::string::npos) << result.out;
+}
+
+TEST_F(CliTest, RejectionMethodAndOrderedScan) {
+  const fs::path mesh = write_quad_gltf("quad.gltf");
+  const fs::path map = write_top_row_map("map.exr", 400.0f);
+  const RunResult result = run({mesh, map, "--method", "rs", "--scan", "ordered", "--count", "1000",
+                                "--stats", file("s.json")});
+  ASSERT_EQ(result.status, 0) << result.err;
+  const nlohmann::json stats = read_json(file("s.json"));
+  EXPECT_EQ(stats["method"], "rs");
+  EXPECT_GT(stats["candidates"].get<std::uint64_t>(), stats["sample_count"].get<std::uint64_t>());
+}
+
+// Density only in the top image row. OBJ puts v = 0 at the image's bottom, so the samples are at
+// the quad's high-v end (v_obj near 1); glTF puts v = 0 at the top, so they are at low v.
+TEST_F(CliTest, ObjAndGltfUvConventions) {
+  const fs::path map = write_top_row_map("map.exr", 4000.0f);
+  const fs::path obj = write_text("quad.obj", kQuadObj);
+  ASSERT_EQ(run({obj, map, "--out", file("obj.ply")}).status, 0);
+  const PlyFile from_obj = read_ply(file("obj.ply"));
+  ASSERT_GT(from_obj.samples.size(), 500u);  // N-bar = 4000 * 1/4
+  for (const PlySample& s : from_obj.samples) {
+    ASSERT_GE(s.v, 0.75f - 1e-5f);
+    ASSERT_GE(s.y, 0.75f - 1e-5f);
+    ASSERT_NEAR(s.v, s.y, 1e-5f);
+  }
+
+  const fs::path gltf = write_quad_gltf("quad.gltf");
+  ASSERT_EQ(run({gltf, map, "--out", file("gltf.ply")}).status, 0);
+  const PlyFile from_gltf = read_ply(file("gltf.ply"));
+  EXPECT_EQ(from_gltf.header, expected_ply_header(from_gltf.samples.size(), false));
+  ASSERT_GT(from_gltf.samples.size(), 500u);
+  for (const PlySample& s : from_gltf.samples) {
+    ASSERT_LE(s.v, 0.25f + 1e-5f);
+    ASSERT_LE(s.y, 0.25f + 1e-5f);
+    ASSERT_NEAR(s.x, 10.0f + s.u, 1e-5f);  // the node's translation is applied
+  }
+}
+
+TEST_F(CliTest, ReadsBinaryGltf) {
+  const std::string json = quad_gltf_json(R"({"byteLength": 92})");
+  write_file(file("quad.glb"), make_glb(json, quad_gltf_buffer()));
+  const fs::path map = write_constant_map("map.exr", 100.0f);
+  const RunResult result = run({file("quad.glb"), map, "--stats", file("s.json")});
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(read_json(file("s.json"))["triangles"], 2);
+}
+
+// A U-shaped octagon of area 5: a fan from its first corner would cover area 7.
+TEST_F(CliTest, TriangulatesConcavePolygons) {
+  const fs::path mesh = write_text("u.obj",
+                                   "v 0 0 0\nv 3 0 0\nv 3 2 0\nv 2 2 0\nv 2 1 0\nv 1 1 0\n"
+                                   "v 1 2 0\nv 0 2 0\nvt 0.5 0.5\n"
+                                   "f 1/1 2/1 3/1 4/1 5/1 6/1 7/1 8/1\n");
+  const fs::path map = write_constant_map("map.exr", 100.0f);
+  const RunResult result = run({mesh, map, "--stats", file("s.json")});
+  ASSERT_EQ(result.status, 0) << result.err;
+  const nlohmann::json stats = read_json(file("s.json"));
+  EXPECT_EQ(stats["triangles"], 6);
+  EXPECT_NEAR(stats["expected_total"].get<double>(), 500.0, 1e-3);
+}
+
+// 8-bit images are sRGB-encoded unless told otherwise; colour maps give their luminance.
+TEST_F(CliTest, DecodesSrgbAndTakesLuminance) {
+  const fs::path mesh = write_text("quad.obj", kQuadObj);
+  const fs::path grey = write_image("grey.png", 1, 1, 1, {128.0f / 255.0f}, OIIO::TypeDesc::UINT8);
+  const fs::path red = write_image("red.png", 1, 1, 3, {1, 0, 0}, OIIO::TypeDesc::UINT8);
+  auto expected_total = [&](const fs::path& map, const std::string& encoding) {
+    const RunResult result = run({mesh, map, "--density-scale", "1000", "--map-encoding", encoding,
+                                  "--stats", file("s.json")});
+    EXPECT_EQ(result.status, 0) << result.err;
+    return read_json(file("s.json"))["expected_total"].get<double>();
+  };
+  const double srgb_half = std::pow((128.0 / 255.0 + 0.055) / 1.055, 2.4);
+  EXPECT_NEAR(expected_total(grey, "auto"), 1000 * srgb_half, 0.01);
+  EXPECT_NEAR(expected_total(grey, "linear"), 1000 * 128.0 / 255.0, 0.01);
+  EXPECT_NEAR(expected_total(red, "auto"), 212.6, 0.01);
+}
+
+TEST_F(CliTest, UsageErrorsExitWithTwo) {
+  const fs::path mesh = write_text("quad.obj", kQuadObj);
+  const fs::path map = write_constant_map("map.exr", 1.0f);
+  EXPECT_EQ(run({mesh}).status, 2);
+  EXPECT_EQ(run({mesh, map, "--count", "-5"}).status, 2);
+  EXPECT_EQ(run({mesh, map, "--count", "nan"}).status, 2);
+  EXPECT_EQ(run({mesh, map, "--method", "mcmc"}).status, 2);
+  EXPECT_EQ(run({mesh, map, "--no-such-option"}).status, 2);
+  const RunResult vulkan = run({mesh, map, "--backend", "vulkan"});
+  EXPECT_EQ(vulkan.status, 2);
+  EXPECT_NE(vulkan.err.find("no Vulkan backend"), std::string::npos) << vulkan.err;
+  EXPECT_EQ(run({mesh, map, "--backend", "auto"}).status, 0);
+}
+
+TEST_F(CliTest, MissingInputs) {
+  const fs::path mesh = write_text("quad.obj", kQuadObj);
+  const fs::path map = write_constant_map("map.exr", 1.0f);
+  expect_failure_naming({file("absent.obj"), map}, file("absent.obj"));
+  expect_failure_naming({mesh, file("absent.exr")}, file("absent.exr"));
+}
+
+TEST_F(CliTest, BadObjFiles) {
+  const fs::path map = write_constant_map("map.exr", 1.0f);
+  const std::string vertices = "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n";
+  const fs::path out_of_range = write_text("range.obj", vertices + "f 1/1 2/2 9/3\n");
+  expect_failure_naming({out_of_range, map}, out_of_range);
+  const fs::path truncated = write_text("truncated.obj", vertices + "f 1/1 2/2 3/");
+  expect_failure_naming({truncated, map}, truncated);
+  const fs::path cut_face = write_text("cut.obj", vertices + "f 1/1 2/2");
+  expect_failure_naming({cut_face, map}, cut_face);
+  const fs::path no_uvs = write_text("nouvs.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n");
+  expect_failure_naming({no_uvs, map}, no_uvs);
+  const fs::path no_faces = write_text("nofaces.obj", vertices);
+  expect_failure_naming({no_faces, map}, no_faces);
+}
+
+TEST_F(CliTest, BadGltfFiles) {
+  const fs::path map = write_constant_map("map.exr", 1.0f);
+  const fs::path malformed =
+      write_text("malformed.gltf", R"({"asset": {"version": "2.0"}, "scenes": [)");
+  expect_failure_naming({malformed, map}, malformed);
+
+  const fs::path missing_bin =
+      write_text("nobin.gltf", quad_gltf_json(R"({"uri": "absent.bin", "byteLength": 92})"));
+  expect_failure_naming({missing_bin, map}, missing_bin);
+
+  write_file(file("short.bin"), quad_gltf_buffer().substr(0, 60));
+  const fs::path short_bin =
+      write_text("short.gltf", quad_gltf_json(R"({"uri": "short.bin", "byteLength": 60})"));
+  expect_failure_naming({short_bin, map}, short_bin);
+
+  std::string no_uv_json = quad_gltf_json(R"({"uri": "quad.bin", "byteLength": 92})");
+  no_uv_json.replace(no_uv_json.find(R"(, "TEXCOORD_0": 1)"), std::strlen(R"(, "TEXCOORD_0": 1)"),
+                     "");
+  write_file(file("quad.bin"), quad_gltf_buffer());
+  const fs::path no_uvs = write_text("nouvs.gltf", no_uv_json);
+  expect_failure_naming({no_uvs, map}, no_uvs);
+}
+
+TEST_F(CliTest, BadDensityMaps) {
+  const fs::path mesh = write_text("quad.obj", kQuadObj);
+
+  std::vector<float> gradient(64 * 64 * 3);
+  for (std::size_t i = 0; i < gradient.size(); ++i) gradient[i] = float(i % 251) / 250.0f;
+  const fs::path png = write_image("truncated.png", 64, 64, 3, gradient, OIIO::TypeDesc::UINT8);
+  fs::resize_file(png, fs::file_size(png) / 2);
+  expect_failure_naming({mesh, png}, png);
+
+  std::vector<float> texels(16, 1.0f);
+  texels[5] = std::numeric_limits<float>::quiet_NaN();
+  const fs::path nan = write_image("nan.exr", 4, 4, 1, texels);
+  expect_failure_naming({mesh, nan}, nan);
+
+  texels[5] = -1.0f;
+  const fs::path negative = write_image("negative.exr", 4, 4, 1, texels);
+  expect_failure_naming({mesh, negative}, negative);
+
+  // JPEG readers fill a truncated image with grey and only record the error.
+  const fs::path jpeg = write_image("truncated.jpg", 64, 64, 3, gradient, OIIO::TypeDesc::UINT8);
+  fs::resize_file(jpeg, fs::file_size(jpeg) / 2);
+  expect_failure_naming({mesh, jpeg}, jpeg);
+
+  const fs::path not_an_image = write_text("garbage.png", "this is not an image");
+  expect_failure_naming({mesh, not_an_image}, not_an_image);
+}
+
+TEST_F(CliTest, FailedRunLeavesExistingOutputsUntouched) {
+  const fs::path mesh = write_text("quad.obj", kQuadObj);
+  std::vector<float> texels(16, 1.0f);
+  texels[3] = -2.0f;
+  const fs::path bad_map = write_image("bad.exr", 4, 4, 1, texels);
+  const std::string old_ply = "previous samples\n", old_json = "{\"previous\": true}\n";
+  write_file(file("out.ply"), old_ply);
+  write_file(file("out.json"), old_json);
+  expect_failure_naming({mesh, bad_map, "--out", file("out.ply"), "--stats", file("out.json")},
+                        bad_map);
+  EXPECT_EQ(read_file(file("out.ply")), old_ply);
+  EXPECT_EQ(read_file(file("out.json")), old_json);
+}
+
+TEST_F(CliTest, UnwritableOutputIsNamed) {
+  const fs::path mesh = write_text("quad.obj", kQuadObj);
+  const fs::path map = write_constant_map("map.exr", 1.0f);
+  const fs::path out = file("no-such-directory") / "s.ply";
+  expect_failure_naming({mesh, map, "--out", out}, out);
+}
+
+}  // namespace

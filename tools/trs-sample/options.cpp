@@ -1,0 +1,117 @@
+#include "options.h"
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <string>
+
+namespace trs {
+namespace {
+
+template <class T>
+std::vector<std::string> names(const std::map<std::string, T>& choices) {
+  std::vector<std::string> result;
+  for (const auto& [name, value] : choices) result.push_back(name);
+  return result;
+}
+
+const std::map<std::string, lightsampler::Method> kMethods = {
+    {"trs", lightsampler::Method::trs}, {"rs", lightsampler::Method::rejection}};
+const std::map<std::string, Backend> kBackends = {
+    {"cpu", Backend::cpu}, {"auto", Backend::automatic}, {"vulkan", Backend::vulkan}};
+const std::map<std::string, lightsampler::ScanOrder> kScans = {
+    {"auto", lightsampler::ScanOrder::automatic},
+    {"unordered", lightsampler::ScanOrder::unordered},
+    {"ordered", lightsampler::ScanOrder::ordered}};
+const std::map<std::string, lightsampler::Addressing> kAddressing = {
+    {"wrap", lightsampler::Addressing::wrap}, {"clamp", lightsampler::Addressing::clamp}};
+const std::map<std::string, MapEncoding> kEncodings = {
+    {"auto", MapEncoding::automatic}, {"srgb", MapEncoding::srgb}, {"linear", MapEncoding::linear}};
+
+/// Finite and non-negative; NaN fails every comparison, so it is rejected too.
+const CLI::Validator kFiniteNonNegative(
+    [](std::string& text) -> std::string {
+      double value = 0;
+      if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < 0) {
+        return "must be a finite non-negative number: " + text;
+      }
+      return {};
+    },
+    "NUMBER >= 0");
+
+}  // namespace
+
+std::variant<Options, int> parse_options(int argc, char** argv) {
+  CLI::App app(
+      "Draws random points on a triangle mesh, distributed in proportion to a density map "
+      "(samples per unit of world area) mapped onto it by its UVs, with Triangle Rejection "
+      "Sampling.",
+      "trs-sample");
+  Options options;
+  double count = 0, scale = 1;
+  std::string method = "trs", backend = "cpu", scan = "auto", address = "wrap", encoding = "auto";
+  std::string out, stats;
+
+  app.add_option("MESH", options.mesh, "Wavefront OBJ or glTF 2.0 (.gltf, .glb) mesh with UVs")
+      ->required();
+  app.add_option("DENSITY", options.density,
+                 "density map (EXR, HDR, PNG, JPEG, ...); colour maps give their luminance")
+      ->required();
+  app.add_option("--count", count,
+                 "target sample count N_target (1e8 notation accepted); without it the count "
+                 "is the integral of the density, N-bar")
+      ->check(kFiniteNonNegative);
+  app.add_option("--seed", options.seed, "random seed")->capture_default_str();
+  app.add_option("--density-scale", scale, "multiplies every texel of the map")
+      ->check(kFiniteNonNegative)
+      ->capture_default_str();
+  app.add_option("--method", method, "Triangle Rejection Sampling, or plain rejection sampling")
+      ->check(CLI::IsMember(names(kMethods)))
+      ->capture_default_str();
+  app.add_option("--threads", options.threads, "worker threads; 0: all hardware threads")
+      ->capture_default_str();
+  app.add_option("--backend", backend, "sampler backend; auto picks the best available")
+      ->check(CLI::IsMember(names(kBackends)))
+      ->capture_default_str();
+  app.add_option("--scan", scan, "cumulative sum of the per-triangle counts")
+      ->check(CLI::IsMember(names(kScans)))
+      ->capture_default_str();
+  app.add_option("--address", address, "what UVs outside [0, 1] read")
+      ->check(CLI::IsMember(names(kAddressing)))
+      ->capture_default_str();
+  app.add_option("--map-encoding", encoding,
+                 "transfer function of the map's values; auto: 8/16-bit images are sRGB unless "
+                 "their metadata says linear, float images are linear")
+      ->check(CLI::IsMember(names(kEncodings)))
+      ->capture_default_str();
+  app.add_option("--out", out, "PLY file of the samples; without it nothing is written");
+  app.add_option("--stats", stats, "JSON summary of the run");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "trs-sample: error: " << e.what() << "\nRun with --help for more information.\n";
+    return kUsageError;
+  }
+
+  if (app.count("--count")) options.target_count = count;
+  options.density_scale = static_cast<float>(scale);
+  if (!std::isfinite(options.density_scale)) {
+    std::cerr << "trs-sample: error: --density-scale " << scale << " does not fit a float\n";
+    return kUsageError;
+  }
+  // The names were checked by IsMember.
+  options.method = kMethods.at(method);
+  options.backend = kBackends.at(backend);
+  options.scan = kScans.at(scan);
+  options.addressing = kAddressing.at(address);
+  options.map_encoding = kEncodings.at(encoding);
+  if (!out.empty()) options.out = out;
+  if (!stats.empty()) options.stats = stats;
+  return options;
+}
+
+}  // namespace trs

@@ -1,0 +1,40 @@
+#pragma once
+// The command line of trs-sample.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <variant>
+
+#include "common/density_io.h"
+#include "lightsampler/mesh.h"
+#include "lightsampler/sampler.h"
+
+namespace trs {
+
+enum class Backend { cpu, automatic, vulkan };
+
+struct Options {
+  std::filesystem::path mesh;
+  std::filesystem::path density;
+  std::optional<double> target_count;
+  std::uint64_t seed = 0;
+  float density_scale = 1.0f;
+  lightsampler::Method method = lightsampler::Method::trs;
+  unsigned threads = 0;
+  Backend backend = Backend::cpu;
+  lightsampler::ScanOrder scan = lightsampler::ScanOrder::automatic;
+  lightsampler::Addressing addressing = lightsampler::Addressing::wrap;
+  MapEncoding map_encoding = MapEncoding::automatic;
+  std::optional<std::filesystem::path> out;
+  std::optional<std::filesystem::path> stats;
+};
+
+/// Exit status of a command line that is wrong (as opposed to inputs that are).
+inline constexpr int kUsageError = 2;
+
+/// Parses the command line: the options, or the status to exit with at once (0 after --help,
+/// kUsageError after a usage error, its message printed).
+std::variant<Options, int> parse_options(int argc, char** argv);
+
+}  // namespace trs

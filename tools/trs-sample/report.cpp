@@ -1,0 +1,107 @@
+#include "report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace trs {
+namespace {
+
+const char* method_name(lightsampler::Method method) {
+  return method == lightsampler::Method::trs ? "trs" : "rs";
+}
+
+const char* addressing_name(lightsampler::Addressing addressing) {
+  return addressing == lightsampler::Addressing::wrap ? "wrap" : "clamp";
+}
+
+/// Accepted samples per candidate; undefined when nothing was tried.
+std::optional<double> acceptance_rate(const lightsampler::Frame& frame) {
+  if (frame.candidates == 0) return std::nullopt;
+  return double(frame.sample_count) / double(frame.candidates);
+}
+
+std::string format(const char* pattern, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, pattern, value);
+  return text;
+}
+
+}  // namespace
+
+nlohmann::ordered_json stats_json(const RunReport& run) {
+  const lightsampler::Frame& frame = run.frame;
+  nlohmann::ordered_json ms = nlohmann::ordered_json::object();
+  for (const lightsampler::PassTime& pass : frame.passes) ms[pass.name] = pass.ms;
+  ms["total"] = frame.total_ms;
+  const auto rate = acceptance_rate(frame);
+
+  nlohmann::ordered_json json;
+  json["mesh"] = run.mesh.file.string();
+  json["triangles"] = run.mesh.triangle_count();
+  json["map"] = {{"file", run.map.file.string()},
+                 {"width", run.map.width},
+                 {"height", run.map.height},
+                 {"encoding", run.map.srgb_decoded ? "srgb" : "linear"},
+                 {"address", addressing_name(run.options.addressing)},
+                 {"scale", run.options.density_scale}};
+  json["method"] = method_name(frame.method);
+  json["backend"] = run.sampler.backend();
+  json["device"] = run.sampler.device();
+  json["threads"] = run.sampler.threads();
+  json["seed"] = run.options.seed;
+  json["target_count"] = run.options.target_count
+                             ? nlohmann::ordered_json(*run.options.target_count)
+                             : nlohmann::ordered_json(nullptr);
+  json["scan"] = lightsampler::to_string(frame.scan_used);
+  json["expected_total"] = std::isfinite(frame.expected_total)
+                               ? nlohmann::ordered_json(frame.expected_total)
+                               : nlohmann::ordered_json(nullptr);
+  json["sample_count"] = frame.sample_count;
+  json["candidates"] = frame.candidates;
+  json["acceptance_rate"] = rate ? nlohmann::ordered_json(*rate) : nlohmann::ordered_json(nullptr);
+  json["exhausted"] = frame.exhausted;
+  json["ms"] = ms;
+  json["out"] = run.options.out ? nlohmann::ordered_json(run.options.out->string())
+                                : nlohmann::ordered_json(nullptr);
+  return json;
+}
+
+void print_summary(std::ostream& out, const RunReport& run, std::optional<double> write_ms) {
+  const lightsampler::Frame& frame = run.frame;
+  out << "mesh         " << run.mesh.file.string() << ": " << run.mesh.triangle_count()
+      << " triangles\n";
+  out << "density map  " << run.map.file.string() << ": " << run.map.width << " x "
+      << run.map.height << ", " << (run.map.srgb_decoded ? "sRGB" : "linear") << ", "
+      << addressing_name(run.options.addressing) << ", scale " << run.options.density_scale << "\n";
+  out << "sampler      " << method_name(frame.method) << " on " << run.sampler.backend() << " ("
+      << run.sampler.device() << ", " << run.sampler.threads() << " threads), seed "
+      << run.options.seed << ", scan " << lightsampler::to_string(frame.scan_used) << "\n";
+  out << "expected N̄   "
+      << (std::isfinite(frame.expected_total) ? format("%.6g", frame.expected_total)
+                                              : std::string("not computed"))
+      << "\n";
+  out << "samples N    " << frame.sample_count;
+  if (run.options.target_count)
+    out << " (target " << format("%.6g", *run.options.target_count) << ")";
+  out << "\n";
+  if (const auto rate = acceptance_rate(frame)) {
+    out << "acceptance   " << format("%.2f", 100 * *rate) << " % (" << frame.candidates
+        << " candidates)\n";
+  }
+  out << "time         ";
+  for (const lightsampler::PassTime& pass : frame.passes) {
+    out << pass.name << " " << format("%.3f", pass.ms) << " ms, ";
+  }
+  out << "total " << format("%.3f", frame.total_ms) << " ms\n";
+  if (frame.total_ms > 0) {
+    out << "rate         " << format("%.3g", frame.sample_count / (frame.total_ms * 1e-3))
+        << " samples/s\n";
+  }
+  if (write_ms) {
+    out << "output       " << run.options.out->string() << " (written in "
+        << format("%.1f", *write_ms) << " ms)\n";
+  }
+}
+
+}  // namespace trs
