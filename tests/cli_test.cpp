@@ -2,6 +2,7 @@
 // written by each test into a fresh temporary directory (meshes by hand, images with
 // OpenImageIO), and the tests read back its exit status, stdout, stderr and output files.
 
+#include <cstdlib>
 #include <OpenImageIO/imageio.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -380,10 +381,32 @@ TEST_F(CliTest, UsageErrorsExitWithTwo) {
   EXPECT_EQ(run({mesh, map, "--count", "nan"}).status, 2);
   EXPECT_EQ(run({mesh, map, "--method", "mcmc"}).status, 2);
   EXPECT_EQ(run({mesh, map, "--no-such-option"}).status, 2);
-  const RunResult vulkan = run({mesh, map, "--backend", "vulkan"});
-  EXPECT_EQ(vulkan.status, 2);
-  EXPECT_NE(vulkan.err.find("no Vulkan backend"), std::string::npos) << vulkan.err;
+  EXPECT_EQ(run({mesh, map, "--backend", "opencl"}).status, 2);
+  EXPECT_EQ(run({mesh, map, "--counting", "magic"}).status, 2);
   EXPECT_EQ(run({mesh, map, "--backend", "auto"}).status, 0);
+}
+
+TEST_F(CliTest, VulkanBackendNamesItsDevice) {
+  const fs::path mesh = write_text("quad.obj", kQuadObj);
+  const fs::path map = write_constant_map("map.exr", 1.0f);
+  const RunResult missing = run({mesh, map, "--backend", "vulkan", "--device", "no-such-gpu"});
+  EXPECT_EQ(missing.status, 1);
+  EXPECT_NE(missing.err.find("no-such-gpu"), std::string::npos) << missing.err;
+
+  for (const char* counting : {"raster", "compute"}) {
+    const RunResult r = run({mesh, map, "--backend", "vulkan", "--counting", counting, "--count", "1000",
+                             "--stats", file("v.json")});
+    if (r.status != 0) {
+      const char* required = std::getenv("LIGHTSAMPLER_REQUIRE_VULKAN");
+      if (required && std::string(required) == "1") FAIL() << "Vulkan is required here: " << r.err;
+      GTEST_SKIP() << "no Vulkan device: " << r.err;
+    }
+    const auto stats = read_json(file("v.json"));
+    EXPECT_EQ(stats["backend"], "vulkan");
+    EXPECT_FALSE(stats["device"].get<std::string>().empty());
+    EXPECT_EQ(stats["counting"], counting);
+    EXPECT_EQ(stats["sample_count"], 1000);
+  }
 }
 
 TEST_F(CliTest, MissingInputs) {

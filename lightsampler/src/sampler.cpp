@@ -55,4 +55,13 @@ const char* to_string(ScanOrder scan) {
   return "?";
 }
 
+const char* to_string(Counting counting) {
+  switch (counting) {
+    case Counting::automatic: return "auto";
+    case Counting::raster: return "raster";
+    case Counting::compute: return "compute";
+  }
+  return "?";
+}
+
 }  // namespace lightsampler

@@ -32,6 +32,26 @@ void validate_triangle_count(std::uint64_t triangles) {
                             " triangles; at most 2^32 - 1 are supported");
 }
 
+namespace {
+// Largest expected total accepted: counts are 64-bit, with headroom for the scan's packing.
+constexpr double kMaxTotal = 0x1p63;
+}  // namespace
+
+void validate_request(const FrameRequest& request) {
+  if (request.target_count &&
+      !(std::isfinite(*request.target_count) && *request.target_count >= 0 &&
+        *request.target_count <= kMaxTotal))
+    throw std::invalid_argument("target count " + std::to_string(*request.target_count) +
+                                " is not in [0, 2^63]");
+  if (request.max_tries == 0) throw std::invalid_argument("max_tries must be at least 1");
+}
+
+void validate_expected_total(double total) {
+  if (!(total <= kMaxTotal))
+    throw std::overflow_error("the density integrates to " + std::to_string(total) +
+                              " samples, more than 2^63; lower the density scale or set a target");
+}
+
 void validate_mesh(const MeshView& mesh, std::size_t map_count) {
   if (mesh.positions.size() % 3 != 0)
     throw std::invalid_argument("mesh positions: size " + std::to_string(mesh.positions.size()) +

@@ -4,6 +4,7 @@
 #include <span>
 
 #include "lightsampler/mesh.h"
+#include "lightsampler/sampler.h"
 
 namespace lightsampler {
 
@@ -16,5 +17,11 @@ void validate_map(const DensityMapView& map, std::size_t index);
 
 /// Throws std::length_error when a mesh of this many triangles cannot be addressed by a Sample.
 void validate_triangle_count(std::uint64_t triangles);
+
+/// Throws std::invalid_argument for a target outside [0, 2^63] or max_tries of zero.
+void validate_request(const FrameRequest& request);
+
+/// Throws std::overflow_error when the density integrates to more than 2^63 samples.
+void validate_expected_total(double total);
 
 }  // namespace lightsampler

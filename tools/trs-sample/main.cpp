@@ -68,7 +68,10 @@ std::unique_ptr<lightsampler::Sampler> make_sampler(const MeshData& mesh,
                                                     const lightsampler::DensityMapView& map,
                                                     const Options& options) {
   try {
-    return lightsampler::make_cpu_sampler(mesh.view(), {&map, 1}, {.threads = options.threads});
+    return lightsampler::make_sampler(mesh.view(), {&map, 1},
+                                      {.backend = options.backend,
+                                       .cpu = {.threads = options.threads},
+                                       .vulkan = {.device = options.device}});
   } catch (const std::invalid_argument& e) {
     rethrow_naming_inputs(e, options);
   } catch (const std::length_error& e) {
@@ -82,6 +85,7 @@ void generate(lightsampler::Sampler& sampler, const Options& options, lightsampl
   request.target_count = options.target_count;
   request.method = options.method;
   request.scan = options.scan;
+  request.counting = options.counting;
   try {
     sampler.generate(request, frame);
   } catch (const std::bad_alloc&) {
@@ -129,11 +133,6 @@ int main(int argc, char** argv) {
   auto parsed = trs::parse_options(argc, argv);
   if (const int* status = std::get_if<int>(&parsed)) return *status;
   const trs::Options& options = std::get<trs::Options>(parsed);
-  if (options.backend == trs::Backend::vulkan) {
-    std::cerr << "trs-sample: error: --backend vulkan: this build has no Vulkan backend (use cpu "
-                 "or auto)\n";
-    return trs::kUsageError;
-  }
   try {
     // Loading and writing run in parallel too, on no more threads than the sampler.
     tbb::task_arena arena(options.threads ? int(options.threads) : tbb::task_arena::automatic);

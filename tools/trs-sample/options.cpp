@@ -18,8 +18,14 @@ std::vector<std::string> names(const std::map<std::string, T>& choices) {
 
 const std::map<std::string, lightsampler::Method> kMethods = {
     {"trs", lightsampler::Method::trs}, {"rs", lightsampler::Method::rejection}};
-const std::map<std::string, Backend> kBackends = {
-    {"cpu", Backend::cpu}, {"auto", Backend::automatic}, {"vulkan", Backend::vulkan}};
+const std::map<std::string, lightsampler::Backend> kBackends = {
+    {"cpu", lightsampler::Backend::cpu},
+    {"auto", lightsampler::Backend::automatic},
+    {"vulkan", lightsampler::Backend::vulkan}};
+const std::map<std::string, lightsampler::Counting> kCountings = {
+    {"auto", lightsampler::Counting::automatic},
+    {"raster", lightsampler::Counting::raster},
+    {"compute", lightsampler::Counting::compute}};
 const std::map<std::string, lightsampler::ScanOrder> kScans = {
     {"auto", lightsampler::ScanOrder::automatic},
     {"unordered", lightsampler::ScanOrder::unordered},
@@ -50,7 +56,8 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
       "trs-sample");
   Options options;
   double count = 0, scale = 1;
-  std::string method = "trs", backend = "cpu", scan = "auto", address = "wrap", encoding = "auto";
+  std::string method = "trs", backend = "auto", counting = "auto", scan = "auto", address = "wrap",
+              encoding = "auto";
   std::string out, stats;
 
   app.add_option("MESH", options.mesh, "Wavefront OBJ or glTF 2.0 (.gltf, .glb) mesh with UVs")
@@ -71,8 +78,16 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads; 0: all hardware threads")
       ->capture_default_str();
-  app.add_option("--backend", backend, "sampler backend; auto picks the best available")
+  app.add_option("--backend", backend,
+                 "sampler backend; auto: Vulkan on a GPU, else the native CPU backend")
       ->check(CLI::IsMember(names(kBackends)))
+      ->capture_default_str();
+  app.add_option("--device", options.device,
+                 "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE); implies Vulkan "
+                 "with --backend auto");
+  app.add_option("--counting", counting,
+                 "Vulkan counting pass: raster (the paper's UV rasterization) or compute")
+      ->check(CLI::IsMember(names(kCountings)))
       ->capture_default_str();
   app.add_option("--scan", scan, "cumulative sum of the per-triangle counts")
       ->check(CLI::IsMember(names(kScans)))
@@ -106,6 +121,7 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
   // The names were checked by IsMember.
   options.method = kMethods.at(method);
   options.backend = kBackends.at(backend);
+  options.counting = kCountings.at(counting);
   options.scan = kScans.at(scan);
   options.addressing = kAddressing.at(address);
   options.map_encoding = kEncodings.at(encoding);

@@ -4,15 +4,15 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <variant>
 
 #include "common/density_io.h"
 #include "lightsampler/mesh.h"
 #include "lightsampler/sampler.h"
+#include "lightsampler/vulkan.h"
 
 namespace trs {
-
-enum class Backend { cpu, automatic, vulkan };
 
 struct Options {
   std::filesystem::path mesh;
@@ -22,7 +22,9 @@ struct Options {
   float density_scale = 1.0f;
   lightsampler::Method method = lightsampler::Method::trs;
   unsigned threads = 0;
-  Backend backend = Backend::cpu;
+  lightsampler::Backend backend = lightsampler::Backend::automatic;
+  std::string device;  ///< Vulkan device by index or name; empty: the default choice
+  lightsampler::Counting counting = lightsampler::Counting::automatic;
   lightsampler::ScanOrder scan = lightsampler::ScanOrder::automatic;
   lightsampler::Addressing addressing = lightsampler::Addressing::wrap;
   MapEncoding map_encoding = MapEncoding::automatic;

@@ -54,6 +54,7 @@ nlohmann::ordered_json stats_json(const RunReport& run) {
                              ? nlohmann::ordered_json(*run.options.target_count)
                              : nlohmann::ordered_json(nullptr);
   json["scan"] = lightsampler::to_string(frame.scan_used);
+  json["counting"] = frame.counting_used;
   json["expected_total"] = std::isfinite(frame.expected_total)
                                ? nlohmann::ordered_json(frame.expected_total)
                                : nlohmann::ordered_json(nullptr);
@@ -75,8 +76,11 @@ void print_summary(std::ostream& out, const RunReport& run, std::optional<double
       << run.map.height << ", " << (run.map.srgb_decoded ? "sRGB" : "linear") << ", "
       << addressing_name(run.options.addressing) << ", scale " << run.options.density_scale << "\n";
   out << "sampler      " << method_name(frame.method) << " on " << run.sampler.backend() << " ("
-      << run.sampler.device() << ", " << run.sampler.threads() << " threads), seed "
-      << run.options.seed << ", scan " << lightsampler::to_string(frame.scan_used) << "\n";
+      << run.sampler.device();
+  if (run.sampler.threads() > 0) out << ", " << run.sampler.threads() << " threads";
+  out << "), seed " << run.options.seed << ", scan " << lightsampler::to_string(frame.scan_used);
+  if (!frame.counting_used.empty()) out << ", counting " << frame.counting_used;
+  out << "\n";
   out << "expected N̄   "
       << (std::isfinite(frame.expected_total) ? format("%.6g", frame.expected_total)
                                               : std::string("not computed"))

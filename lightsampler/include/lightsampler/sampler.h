@@ -24,14 +24,25 @@ enum class Method { trs, rejection };
 /// unless the triangle count and the total do not fit one 64-bit word together.
 enum class ScanOrder { automatic, unordered, ordered };
 
+/// How the Vulkan backend enumerates (triangle, texel) pairs in the counting pass: `raster`
+/// rasterizes the mesh in UV space (the paper's method, conservative or dilated); `compute` runs
+/// one thread per candidate cell after a prefix sum over the triangles' footprints, for GPUs
+/// whose graphics units are a small part of the chip. The CPU backend has one path of its own.
+enum class Counting { automatic, raster, compute };
+
 struct FrameRequest {
   std::uint64_t seed = 0;
   /// N_target: the expected sample count. None: the count emerges from the maps (N-bar).
   std::optional<double> target_count;
   Method method = Method::trs;
   ScanOrder scan = ScanOrder::automatic;
+  Counting counting = Counting::automatic;
   /// False: stop after the counts and the CDF (no samples), e.g. to size buffers.
   bool realize = true;
+  /// Vulkan backend: copy the outputs into the Frame. False keeps them on the device (timing
+  /// the sampler alone, or a consumer that reads the device buffers); the Frame's totals and
+  /// times are still filled.
+  bool read_back = true;
   /// Candidates tried per sample before giving up. A sample that gives up keeps its last
   /// candidate and is counted in Frame::exhausted; a non-zero count means a biased frame.
   std::uint32_t max_tries = 1u << 28;
@@ -57,6 +68,7 @@ struct Frame {
   std::uint64_t exhausted = 0;      ///< samples that reached max_tries
   Method method = Method::trs;
   ScanOrder scan_used = ScanOrder::ordered;
+  std::string counting_used;        ///< "cpu", "raster" or "compute"; empty when not counted
   std::vector<PassTime> passes;     ///< time per pass, in order
   double total_ms = 0;
 };
@@ -98,5 +110,6 @@ std::unique_ptr<Sampler> make_cpu_sampler(const MeshView& mesh,
 
 const char* to_string(Method method);
 const char* to_string(ScanOrder scan);
+const char* to_string(Counting counting);
 
 }  // namespace lightsampler

@@ -23,8 +23,6 @@ namespace {
 
 // Elements per packed atomic in the unordered scan (the size of a GPU subgroup reduction).
 constexpr std::size_t kScanBlock = 256;
-// Largest expected total accepted: counts are 64-bit, with headroom for the scan's packing.
-constexpr double kMaxTotal = 0x1p63;
 
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
@@ -53,15 +51,6 @@ class Stopwatch {
  private:
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
-
-void validate_request(const FrameRequest& request) {
-  if (request.target_count &&
-      !(std::isfinite(*request.target_count) && *request.target_count >= 0 &&
-        *request.target_count <= kMaxTotal))
-    throw std::invalid_argument("target count " + std::to_string(*request.target_count) +
-                                " is not in [0, 2^63]");
-  if (request.max_tries == 0) throw std::invalid_argument("max_tries must be at least 1");
-}
 
 class CpuSampler final : public Sampler {
  public:
@@ -106,6 +95,7 @@ class CpuSampler final : public Sampler {
     frame.method = request.method;
     frame.candidates = frame.exhausted = 0;
     frame.expected_total = std::numeric_limits<double>::quiet_NaN();
+    frame.counting_used.clear();
     Stopwatch total, pass;
     arena_.execute([&] {
       if (request.method == Method::trs)
@@ -132,10 +122,9 @@ class CpuSampler final : public Sampler {
   void counting_pass(Frame& frame, Stopwatch& pass) {
     const double total = cpu::count(triangles_, texel_triangles_, maps_, frame.expected_counts,
                                     frame.max_density);
-    if (!(total <= kMaxTotal))
-      throw std::overflow_error("the density integrates to " + std::to_string(total) +
-                                " samples, more than 2^63; lower the density scale or set a target");
+    validate_expected_total(total);
     frame.expected_total = total;
+    frame.counting_used = "cpu";
     frame.passes.push_back({"counting", pass.lap_ms()});
   }
 
@@ -190,11 +179,8 @@ class CpuSampler final : public Sampler {
     const float bound = cpu::rejection_distribution(triangles_, maps_, area_cdf_);
     frame.passes.push_back({"distribution", pass.lap_ms()});
 
-    // N = target rounded stochastically, so that E[N] = target as with TRS.
-    const PhiloxCounter u = philox4x32({0xffffffffu, 0, 0, 0}, stream_key(request.seed, Stream::rounding));
-    const double whole = std::floor(target);
     const bool empty = !(bound > 0) || area_cdf_.empty() || !(area_cdf_[area_cdf_.size() - 1] > 0);
-    frame.sample_count = empty ? 0 : std::uint64_t(whole) + (uniform_double(u[0]) < target - whole);
+    frame.sample_count = empty ? 0 : cpu::round_total(target, request.seed);
     frame.scan_used = ScanOrder::ordered;
     if (!request.realize) {
       frame.samples.resize(0);

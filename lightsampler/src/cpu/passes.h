@@ -37,6 +37,10 @@ TriangleIntegral integrate_triangle(const TriangleRecord& triangle, const TexelT
 std::uint64_t round_counts(std::span<const double> expected_counts, double scale, PhiloxKey key,
                            Buffer<std::uint64_t>& counts);
 
+/// The total count of plain rejection sampling: the target rounded stochastically (one draw of
+/// the rounding stream), so that E[N] = target as with TRS.
+std::uint64_t round_total(double target, std::uint64_t seed);
+
 /// Whether Algorithm 3 can pack (processing index, partial sum) into one 64-bit word.
 bool unordered_scan_fits(std::uint64_t elements, std::uint64_t total);
 

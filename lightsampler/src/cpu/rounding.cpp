@@ -35,4 +35,10 @@ std::uint64_t round_counts(std::span<const double> expected_counts, double scale
       std::plus<>());
 }
 
+std::uint64_t round_total(double target, std::uint64_t seed) {
+  const PhiloxCounter u = philox4x32({0xffffffffu, 0, 0, 0}, stream_key(seed, Stream::rounding));
+  const double whole = std::floor(target);
+  return std::uint64_t(whole) + (uniform53(u) < target - whole ? 1 : 0);
+}
+
 }  // namespace lightsampler::cpu

@@ -1,0 +1,51 @@
+#pragma once
+// The Vulkan backend, and choosing a backend.
+
+#include <memory>
+#include <stdexcept>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "lightsampler/sampler.h"
+
+namespace lightsampler {
+
+struct VulkanOptions {
+  /// Device by index or case-insensitive name substring; empty: LIGHTSAMPLER_VULKAN_DEVICE,
+  /// else the best device (discrete GPU first).
+  std::string device;
+  /// Khronos validation layer (also LIGHTSAMPLER_VULKAN_VALIDATION=1), when installed.
+  bool validation = false;
+};
+
+/// The GPU backend. Throws VulkanUnavailable when no suitable device exists (the message says
+/// what is missing), std::invalid_argument / std::length_error on bad input as the CPU backend.
+std::unique_ptr<Sampler> make_vulkan_sampler(const MeshView& mesh, std::span<const DensityMapView> maps,
+                                             const VulkanOptions& options = {});
+
+class VulkanUnavailable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// One line per Vulkan device: index, name, type, and what it lacks if unsuitable. Empty when
+/// Vulkan itself is unavailable.
+std::vector<std::string> vulkan_devices();
+
+enum class Backend { automatic, cpu, vulkan };
+
+struct SamplerOptions {
+  Backend backend = Backend::automatic;
+  CpuOptions cpu;
+  VulkanOptions vulkan;
+};
+
+/// `automatic` takes the Vulkan backend when a suitable device exists, else the CPU backend;
+/// `vulkan` throws VulkanUnavailable rather than falling back.
+std::unique_ptr<Sampler> make_sampler(const MeshView& mesh, std::span<const DensityMapView> maps,
+                                      const SamplerOptions& options = {});
+
+const char* to_string(Backend backend);
+
+}  // namespace lightsampler

@@ -1,0 +1,61 @@
+// Choosing a backend: Vulkan when a suitable device exists, the CPU otherwise.
+
+#include <cstdlib>
+#include <string>
+
+#include "lightsampler/vulkan.h"
+#include "vulkan/context.h"
+
+namespace lightsampler {
+
+namespace {
+
+bool has_suitable_gpu() {
+  for (const vk::DeviceInfo& d : vk::Context::devices())
+    if (d.suitable && d.type != VK_PHYSICAL_DEVICE_TYPE_CPU) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<std::string> vulkan_devices() {
+  std::vector<std::string> lines;
+  for (const vk::DeviceInfo& d : vk::Context::devices()) {
+    std::string line = std::to_string(d.index) + ": " + d.name;
+    if (!d.suitable) line += " (unsuitable: " + d.missing + ")";
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+std::unique_ptr<Sampler> make_sampler(const MeshView& mesh, std::span<const DensityMapView> maps,
+                                      const SamplerOptions& options) {
+  switch (options.backend) {
+    case Backend::cpu: return make_cpu_sampler(mesh, maps, options.cpu);
+    case Backend::vulkan: return make_vulkan_sampler(mesh, maps, options.vulkan);
+    case Backend::automatic:
+      // A device asked for by name must be used; otherwise Vulkan only on a GPU, because a
+      // software device (lavapipe) is slower than the native CPU backend.
+      if (!options.vulkan.device.empty() || std::getenv("LIGHTSAMPLER_VULKAN_DEVICE"))
+        return make_vulkan_sampler(mesh, maps, options.vulkan);
+      if (has_suitable_gpu()) {
+        try {
+          return make_vulkan_sampler(mesh, maps, options.vulkan);
+        } catch (const VulkanUnavailable&) {
+        }
+      }
+      return make_cpu_sampler(mesh, maps, options.cpu);
+  }
+  return nullptr;
+}
+
+const char* to_string(Backend backend) {
+  switch (backend) {
+    case Backend::automatic: return "auto";
+    case Backend::cpu: return "cpu";
+    case Backend::vulkan: return "vulkan";
+  }
+  return "?";
+}
+
+}  // namespace lightsampler

@@ -1,0 +1,99 @@
+#include "vulkan/gpu_scene.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "validate.h"
+#include "vulkan/layouts.h"
+
+namespace lightsampler::vk {
+
+namespace {
+
+cpu::DensityMap copy_map(const DensityMapView& view) {
+  return {{view.texels.begin(), view.texels.end()}, view.width, view.height, view.addressing, view.scale};
+}
+
+/// Grows `box` by the lattice cells of the triangle's bounding box (float corners, as the
+/// shaders compute them).
+void extend(LatticeBox& box, const cpu::TexelTriangle& t) {
+  const float xs[3] = {t.origin[0], t.origin[0] + t.edge1[0], t.origin[0] + t.edge2[0]};
+  const float ys[3] = {t.origin[1], t.origin[1] + t.edge1[1], t.origin[1] + t.edge2[1]};
+  const auto x0 = cpu::floor_to_int(std::min({xs[0], xs[1], xs[2]}));
+  const auto x1 = cpu::floor_to_int(std::max({xs[0], xs[1], xs[2]}));
+  const auto y0 = cpu::floor_to_int(std::min({ys[0], ys[1], ys[2]}));
+  const auto y1 = cpu::floor_to_int(std::max({ys[0], ys[1], ys[2]}));
+  if (box.empty()) {
+    box = {x0, y0, x1, y1};
+    return;
+  }
+  box = {std::min(box.x0, x0), std::min(box.y0, y0), std::max(box.x1, x1), std::max(box.y1, y1)};
+}
+
+}  // namespace
+
+GpuScene::GpuScene(Context& context, const MeshView& mesh, std::span<const DensityMapView> maps)
+    : context_(context) {
+  validate_mesh(mesh, maps.size());
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    validate_map(maps[i], i);
+    maps_.push_back(copy_map(maps[i]));
+  }
+  records_ = cpu::make_triangle_records(mesh, maps.size());
+  upload_maps();
+  upload_triangles();
+  // Plain rejection sampling picks triangles by area: the CDF depends on the mesh alone.
+  std::vector<double> cdf(records_.size());
+  double sum = 0;
+  for (std::size_t t = 0; t < records_.size(); ++t) cdf[t] = sum += records_[t].area;
+  total_area_ = sum;
+  area_cdf_ = context_.create_buffer(cdf.size() * sizeof(double));
+  if (!cdf.empty()) context_.upload(area_cdf_, 0, cdf.data(), cdf.size() * sizeof(double));
+}
+
+void GpuScene::update_map(std::size_t index, const DensityMapView& map) {
+  if (index >= maps_.size())
+    throw std::out_of_range("density map " + std::to_string(index) + " does not exist (" +
+                            std::to_string(maps_.size()) + " maps)");
+  validate_map(map, index);
+  const bool same_size = map.width == maps_[index].width && map.height == maps_[index].height;
+  maps_[index] = copy_map(map);
+  upload_maps();  // texels and records; cheap next to the counting pass that follows
+  if (!same_size) upload_triangles();
+}
+
+void GpuScene::upload_maps() {
+  std::vector<gpu::GpuMap> records;
+  std::vector<float> texels;
+  for (const cpu::DensityMap& m : maps_) {
+    if (texels.size() + m.texels.size() > 0xffffffffull)
+      throw std::length_error("density maps hold more than 2^32 texels in all");
+    records.push_back({std::uint32_t(texels.size()), m.width, m.height, std::uint32_t(m.addressing), m.scale, 0, 0, 0});
+    texels.insert(texels.end(), m.texels.begin(), m.texels.end());
+  }
+  if (map_records_.size() < records.size() * sizeof(gpu::GpuMap) || !map_records_)
+    map_records_ = context_.create_buffer(records.size() * sizeof(gpu::GpuMap));
+  if (texels_.size() < texels.size() * sizeof(float) || !texels_)
+    texels_ = context_.create_buffer(texels.size() * sizeof(float));
+  if (!records.empty()) {
+    context_.upload(map_records_, 0, records.data(), records.size() * sizeof(gpu::GpuMap));
+    context_.upload(texels_, 0, texels.data(), texels.size() * sizeof(float));
+  }
+}
+
+void GpuScene::upload_triangles() {
+  texel_triangles_.resize(records_.size());
+  map_boxes_.assign(maps_.size(), {0, 0, -1, -1});
+  std::vector<gpu::GpuTriangle> gpu(records_.size());
+  for (std::size_t t = 0; t < records_.size(); ++t) {
+    const cpu::TexelTriangle tt = texel_triangles_[t] = cpu::make_texel_triangle(records_[t], maps_);
+    gpu[t] = {tt.origin[0], tt.origin[1], tt.edge1[0], tt.edge1[1], tt.edge2[0], tt.edge2[1],
+              float(records_[t].area), tt.map};
+    if (tt.map != kNoMap) extend(map_boxes_[tt.map], tt);
+  }
+  if (!triangles_) triangles_ = context_.create_buffer(gpu.size() * sizeof(gpu::GpuTriangle));
+  if (!gpu.empty()) context_.upload(triangles_, 0, gpu.data(), gpu.size() * sizeof(gpu::GpuTriangle));
+}
+
+}  // namespace lightsampler::vk

@@ -1,0 +1,50 @@
+#pragma once
+// The mesh and density maps resident on the device, uploaded once; a map update re-uploads its
+// texels (and, when its size changes, the texel-space triangles that use it).
+
+#include <span>
+#include <vector>
+
+#include "cpu/density.h"
+#include "cpu/geometry.h"
+#include "vulkan/context.h"
+
+namespace lightsampler::vk {
+
+/// Lattice cells [x0, x1] x [y0, y1] that a map's triangles touch (texel space, unbounded).
+struct LatticeBox {
+  std::int64_t x0, y0, x1, y1;
+  bool empty() const { return x1 < x0; }
+};
+
+class GpuScene {
+ public:
+  GpuScene(Context& context, const MeshView& mesh, std::span<const DensityMapView> maps);
+
+  void update_map(std::size_t index, const DensityMapView& map);
+
+  std::uint32_t triangle_count() const { return std::uint32_t(records_.size()); }
+  double total_area() const { return total_area_; }
+  std::span<const cpu::DensityMap> maps() const { return maps_; }
+  std::span<const cpu::TexelTriangle> texel_triangles() const { return texel_triangles_; }
+  std::span<const LatticeBox> map_boxes() const { return map_boxes_; }
+
+  VkDeviceAddress triangles() const { return triangles_.address(); }
+  VkDeviceAddress map_records() const { return map_records_.address(); }
+  VkDeviceAddress texels() const { return texels_.address(); }
+  VkDeviceAddress area_cdf() const { return area_cdf_.address(); }
+
+ private:
+  void upload_maps();
+  void upload_triangles();
+
+  Context& context_;
+  std::vector<cpu::TriangleRecord> records_;
+  std::vector<cpu::DensityMap> maps_;                 ///< host copies: density() reads them
+  std::vector<cpu::TexelTriangle> texel_triangles_;   ///< as the CPU backend builds them
+  std::vector<LatticeBox> map_boxes_;
+  Buffer triangles_, map_records_, texels_, area_cdf_;
+  double total_area_ = 0;
+};
+
+}  // namespace lightsampler::vk

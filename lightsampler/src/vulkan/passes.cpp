@@ -1,0 +1,61 @@
+#include "vulkan/passes.h"
+
+#include <algorithm>
+
+#include "spirv/count_cells_comp.h"
+#include "spirv/count_setup_comp.h"
+#include "spirv/realize_comp.h"
+#include "spirv/rejection_bound_comp.h"
+#include "spirv/rejection_comp.h"
+#include "spirv/round_comp.h"
+#include "spirv/scan_add_comp.h"
+#include "spirv/scan_local_comp.h"
+#include "spirv/scan_unordered_comp.h"
+#include "spirv/total_comp.h"
+
+namespace lightsampler::vk {
+
+Pipelines::Pipelines(Context& c)
+    : count_setup(c.create_compute(spirv::count_setup_comp, sizeof(gpu::CountPush))),
+      count_cells(c.create_compute(spirv::count_cells_comp, sizeof(gpu::CountPush))),
+      total(c.create_compute(spirv::total_comp, sizeof(gpu::CountPush))),
+      round(c.create_compute(spirv::round_comp, sizeof(gpu::RoundPush))),
+      scan_unordered(c.create_compute(spirv::scan_unordered_comp, sizeof(gpu::ScanPush))),
+      scan_local(c.create_compute(spirv::scan_local_comp, sizeof(gpu::ScanPush))),
+      scan_add(c.create_compute(spirv::scan_add_comp, sizeof(gpu::ScanPush))),
+      realize(c.create_compute(spirv::realize_comp, sizeof(gpu::RealizePush))),
+      rejection_bound(c.create_compute(spirv::rejection_bound_comp, sizeof(gpu::RejectionPush))),
+      rejection(c.create_compute(spirv::rejection_comp, sizeof(gpu::RejectionPush))) {}
+
+std::uint32_t workgroups_for(std::uint64_t elements) {
+  const std::uint64_t groups = (elements + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+  return std::uint32_t(std::clamp<std::uint64_t>(groups, 1, gpu::kMaxWorkgroups));
+}
+
+Buffer& OrderedScan::scratch(std::vector<Buffer>& level_buffers, std::size_t level, std::uint64_t elements) {
+  if (level_buffers.size() <= level) level_buffers.resize(level + 1);
+  Buffer& b = level_buffers[level];
+  if (!b || b.size() < elements * sizeof(std::uint64_t))
+    b = context_.create_buffer(elements * sizeof(std::uint64_t));
+  return b;
+}
+
+void OrderedScan::record(Commands& commands, const Pipelines& pipelines, VkDeviceAddress source,
+                         VkDeviceAddress result, std::uint64_t n, std::size_t level) {
+  if (n == 0) return;
+  const std::uint64_t blocks = (n + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
+  // Addresses, not references: the recursion grows the scratch vectors.
+  const VkDeviceAddress sums = scratch(block_sums_, level, blocks).address();
+  gpu::ScanPush push{source, result, sums, 0, 0, n, 0, 0};
+  commands.dispatch(pipelines.scan_local, &push, sizeof push,
+                    std::uint32_t(std::min<std::uint64_t>(blocks, gpu::kMaxWorkgroups)));
+  commands.barrier();
+  if (blocks == 1) return;
+  const VkDeviceAddress scanned = scratch(scanned_sums_, level, blocks).address();
+  record(commands, pipelines, sums, scanned, blocks, level + 1);
+  push.block_sums = scanned;
+  commands.dispatch(pipelines.scan_add, &push, sizeof push, workgroups_for(n));
+  commands.barrier();
+}
+
+}  // namespace lightsampler::vk

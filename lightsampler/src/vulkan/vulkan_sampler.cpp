@@ -1,0 +1,312 @@
+// The Vulkan backend: the passes of shaders/ recorded in two submissions per frame. The host
+// reads N between them, to size the sample buffer and to choose the scan.
+
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <string>
+
+#include "cpu/passes.h"
+#include "validate.h"
+#include "vulkan/gpu_scene.h"
+#include "vulkan/passes.h"
+#include "spirv/count_raster_frag.h"
+#include "spirv/count_raster_geom.h"
+#include "spirv/count_raster_vert.h"
+
+namespace lightsampler {
+
+namespace {
+
+using vk::Buffer;
+using vk::Commands;
+using vk::workgroups_for;
+
+// Viewport tile of the raster counting path, in texels (within every device's limits).
+constexpr std::int64_t kTile = 4096;
+
+/// Per-triangle and per-frame device buffers, grown on demand and kept between frames.
+struct FrameBuffers {
+  Buffer expected, max_density, footprint, cell_cdf, counts, cdf, inverse, identity, totals, samples;
+};
+
+class VulkanSampler final : public Sampler {
+ public:
+  VulkanSampler(const MeshView& mesh, std::span<const DensityMapView> maps, const VulkanOptions& options)
+      : context_(vk::Context::create({options.device, options.validation})),
+        scene_(*context_, mesh, maps),
+        pipelines_(*context_),
+        scan_(*context_) {
+    const std::uint64_t t = std::max<std::uint64_t>(scene_.triangle_count(), 1);
+    buffers_.expected = context_->create_buffer(t * sizeof(float));
+    buffers_.max_density = context_->create_buffer(t * sizeof(std::uint32_t));
+    for (Buffer* b : {&buffers_.footprint, &buffers_.cell_cdf, &buffers_.counts, &buffers_.cdf})
+      *b = context_->create_buffer(t * sizeof(std::uint64_t));
+    buffers_.inverse = context_->create_buffer(t * sizeof(std::uint32_t));
+    // The ordered scan keeps triangles in place: its inverse permutation is the identity.
+    std::vector<std::uint32_t> identity(scene_.triangle_count());
+    std::iota(identity.begin(), identity.end(), 0u);
+    buffers_.identity = context_->create_buffer(t * sizeof(std::uint32_t));
+    if (!identity.empty())
+      context_->upload(buffers_.identity, 0, identity.data(), identity.size() * sizeof(std::uint32_t));
+    buffers_.totals = context_->create_buffer(sizeof(gpu::GpuTotals), /*host_visible=*/true);
+  }
+
+  std::string backend() const override { return "vulkan"; }
+  std::string device() const override { return context_->device_name(); }
+  unsigned threads() const override { return 0; }
+  std::uint64_t triangle_count() const override { return scene_.triangle_count(); }
+  std::size_t map_count() const override { return scene_.maps().size(); }
+
+  void update_map(std::size_t index, const DensityMapView& map) override { scene_.update_map(index, map); }
+
+  float density(std::uint32_t triangle, float b1, float b2) const override {
+    if (triangle >= scene_.triangle_count())
+      throw std::out_of_range("triangle " + std::to_string(triangle) + " does not exist");
+    return cpu::texel_triangle_density(scene_.texel_triangles()[triangle], scene_.maps(), b1, b2);
+  }
+
+  void generate(const FrameRequest& request, Frame& frame) override {
+    validate_request(request);
+    const auto start = std::chrono::steady_clock::now();
+    frame.passes.clear();
+    frame.method = request.method;
+    frame.candidates = frame.exhausted = 0;
+    frame.expected_total = std::numeric_limits<double>::quiet_NaN();
+    frame.counting_used.clear();
+    if (request.method == Method::trs)
+      generate_trs(request, frame);
+    else
+      generate_rejection(request, frame);
+    frame.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+
+ private:
+  gpu::GpuTotals totals() const {
+    gpu::GpuTotals t;
+    std::memcpy(&t, buffers_.totals.mapped(), sizeof t);
+    return t;
+  }
+
+  void add_passes(Frame& frame, const std::vector<std::pair<std::string, double>>& times) {
+    for (const auto& [name, ms] : times) frame.passes.push_back({name, ms});
+  }
+
+  gpu::CountPush count_push() const {
+    return {scene_.triangles(), scene_.map_records(), scene_.texels(), buffers_.expected.address(),
+            buffers_.max_density.address(), buffers_.footprint.address(), buffers_.cell_cdf.address(),
+            buffers_.totals.address(), scene_.triangle_count(), 0};
+  }
+
+  /// Counting (Algorithm 2, lines 1-8) and the total N-bar, recorded into `c`.
+  void record_counting(Commands& c, const FrameRequest& request, Frame& frame) {
+    const gpu::CountPush push = count_push();
+    const std::uint32_t groups = workgroups_for(scene_.triangle_count());
+    c.dispatch(pipelines_.count_setup, &push, sizeof push, groups);
+    c.barrier();
+    if (request.counting == Counting::raster) {
+      record_raster_counting(c);
+      frame.counting_used = "raster";
+    } else {
+      scan_.record(c, pipelines_, buffers_.footprint.address(), buffers_.cell_cdf.address(), scene_.triangle_count());
+      c.dispatch(pipelines_.count_cells, &push, sizeof push, gpu::kMaxWorkgroups);
+      c.barrier();
+      frame.counting_used = "compute";
+    }
+    c.dispatch(pipelines_.total, &push, sizeof push, groups);
+    c.barrier();
+    c.timestamp("counting");
+  }
+
+  /// The paper's counting: every map's triangles rasterized in its texel space, one draw per
+  /// viewport-sized tile of the lattice cells they touch.
+  void record_raster_counting(Commands& c) {
+    const vk::RasterPipeline& pipeline = raster_pipeline();
+    const std::uint32_t vertices = 3 * scene_.triangle_count();
+    for (std::uint32_t m = 0; m < scene_.map_boxes().size(); ++m) {
+      const vk::LatticeBox box = scene_.map_boxes()[m];
+      if (box.empty()) continue;
+      for (std::int64_t y = box.y0; y <= box.y1; y += kTile)
+        for (std::int64_t x = box.x0; x <= box.x1; x += kTile) {
+          const auto width = std::uint32_t(std::min<std::int64_t>(kTile, box.x1 + 1 - x));
+          const auto height = std::uint32_t(std::min<std::int64_t>(kTile, box.y1 + 1 - y));
+          const gpu::RasterPush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
+                                     buffers_.expected.address(), buffers_.max_density.address(),
+                                     buffers_.footprint.address(), float(x), float(y), float(width),
+                                     float(height), m, 0};
+          c.draw(pipeline, &push, sizeof push, width, height, vertices);
+        }
+    }
+    c.barrier();
+  }
+
+  /// Built on first use: conservative rasterization where the device has it, else the
+  /// geometry shader dilates each triangle.
+  const vk::RasterPipeline& raster_pipeline() {
+    if (!raster_) {
+      const bool conservative = context_->capabilities().conservative_rasterization;
+      vk::RasterStages stages{spirv::count_raster_vert, {}, spirv::count_raster_frag, conservative};
+      if (!conservative) stages.geometry = spirv::count_raster_geom;
+      raster_ = std::make_unique<vk::RasterPipeline>(context_->create_raster(stages, sizeof(gpu::RasterPush)));
+    }
+    return *raster_;
+  }
+
+  void ensure_samples(std::uint64_t n) {
+    const VkDeviceSize bytes = std::max<std::uint64_t>(n, 1) * sizeof(gpu::GpuSample);
+    if (!buffers_.samples || buffers_.samples.size() < bytes) {
+      buffers_.samples = Buffer();  // free the old one first: samples can be most of the memory
+      buffers_.samples = context_->create_buffer(bytes);
+    }
+  }
+
+  void generate_trs(const FrameRequest& request, Frame& frame) {
+    const std::uint32_t n_tri = scene_.triangle_count();
+    Commands c = context_->begin();
+    c.fill(buffers_.totals, 0, sizeof(gpu::GpuTotals), 0);
+    c.barrier();
+    record_counting(c, request, frame);
+    const gpu::RoundPush round{buffers_.expected.address(), buffers_.counts.address(), buffers_.totals.address(),
+                               request.target_count ? *request.target_count : -1.0,
+                               stream_key(request.seed, Stream::rounding)[0],
+                               stream_key(request.seed, Stream::rounding)[1], n_tri, 0};
+    c.dispatch(pipelines_.round, &round, sizeof round, workgroups_for(n_tri));
+    c.barrier();
+    c.timestamp("rounding");
+    add_passes(frame, context_->submit(c));
+
+    const gpu::GpuTotals counted = totals();
+    frame.expected_total = counted.expected_total;
+    validate_expected_total(frame.expected_total);
+    frame.sample_count = counted.sample_count;
+    const bool fits = cpu::unordered_scan_fits(n_tri, frame.sample_count);
+    if (request.scan == ScanOrder::unordered && !fits)
+      throw std::overflow_error(std::to_string(n_tri) + " triangles and " + std::to_string(frame.sample_count) +
+                                " samples do not fit one 64-bit packed counter; use the ordered scan");
+    frame.scan_used = request.scan == ScanOrder::ordered || !fits ? ScanOrder::ordered : ScanOrder::unordered;
+    if (request.realize) ensure_samples(frame.sample_count);
+
+    Commands d = context_->begin();
+    const Buffer& inverse = frame.scan_used == ScanOrder::unordered ? buffers_.inverse : buffers_.identity;
+    if (frame.scan_used == ScanOrder::unordered && n_tri > 0) {
+      const gpu::ScanPush scan{buffers_.counts.address(), buffers_.cdf.address(), 0, buffers_.inverse.address(),
+                               buffers_.totals.address(), n_tri, std::uint32_t(64 - std::bit_width(std::uint64_t(n_tri))), 0};
+      d.dispatch(pipelines_.scan_unordered, &scan, sizeof scan, workgroups_for(n_tri));
+      d.barrier();
+    } else {
+      scan_.record(d, pipelines_, buffers_.counts.address(), buffers_.cdf.address(), n_tri);
+    }
+    d.timestamp("scan");
+    if (request.realize && frame.sample_count > 0) {
+      const PhiloxKey key = stream_key(request.seed, Stream::realization);
+      const gpu::RealizePush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
+                                  buffers_.max_density.address(), buffers_.cdf.address(), inverse.address(),
+                                  buffers_.samples.address(), buffers_.totals.address(), key[0], key[1],
+                                  n_tri, request.max_tries};
+      d.dispatch(pipelines_.realize, &push, sizeof push, workgroups_for(frame.sample_count));
+      d.barrier();
+      d.timestamp("realization");
+    }
+    add_passes(frame, context_->submit(d));
+    const gpu::GpuTotals realized = totals();
+    frame.candidates = realized.candidates;
+    frame.exhausted = realized.exhausted;
+    if (request.read_back) read_back(frame, inverse, request.realize);
+  }
+
+  void generate_rejection(const FrameRequest& request, Frame& frame) {
+    const std::uint32_t n_tri = scene_.triangle_count();
+    Commands c = context_->begin();
+    c.fill(buffers_.totals, 0, sizeof(gpu::GpuTotals), 0);
+    c.barrier();
+    if (!request.target_count) record_counting(c, request, frame);  // Algorithm 1 needs N
+    for (std::size_t m = 0; m < scene_.maps().size(); ++m) {
+      const std::uint32_t texels = std::uint32_t(scene_.maps()[m].texels.size());
+      const gpu::RejectionPush push{0, scene_.map_records(), scene_.texels(), 0, 0, buffers_.totals.address(),
+                                    0, 0, 0, n_tri, 0, texels, std::uint32_t(m)};
+      c.dispatch(pipelines_.rejection_bound, &push, sizeof push, workgroups_for(texels));
+    }
+    c.barrier();
+    c.timestamp("distribution");
+    add_passes(frame, context_->submit(c));
+
+    const gpu::GpuTotals bounded = totals();
+    double target;
+    if (request.target_count) {
+      target = *request.target_count;
+    } else {
+      frame.expected_total = bounded.expected_total;
+      validate_expected_total(frame.expected_total);
+      target = frame.expected_total;
+    }
+    const float bound = std::bit_cast<float>(bounded.max_density_bits);
+    const bool empty = !(bound > 0) || n_tri == 0 || !(scene_.total_area() > 0);
+    frame.sample_count = empty ? 0 : cpu::round_total(target, request.seed);
+    frame.scan_used = ScanOrder::ordered;
+    if (!request.realize || frame.sample_count == 0) {
+      if (request.read_back) frame.samples.resize(0);
+      return;
+    }
+    ensure_samples(frame.sample_count);
+    Commands d = context_->begin();
+    const PhiloxKey key = stream_key(request.seed, Stream::rejection);
+    const gpu::RejectionPush push{scene_.triangles(), scene_.map_records(), scene_.texels(), scene_.area_cdf(),
+                                  buffers_.samples.address(), buffers_.totals.address(), frame.sample_count,
+                                  key[0], key[1], n_tri, request.max_tries, 0, 0};
+    d.dispatch(pipelines_.rejection, &push, sizeof push, workgroups_for(frame.sample_count));
+    d.barrier();
+    d.timestamp("realization");
+    add_passes(frame, context_->submit(d));
+    const gpu::GpuTotals realized = totals();
+    frame.candidates = realized.candidates;
+    frame.exhausted = realized.exhausted;
+    if (request.read_back) {
+      frame.samples.resize(frame.sample_count);
+      context_->download(buffers_.samples, 0, frame.samples.data(), frame.sample_count * sizeof(Sample));
+    }
+  }
+
+  /// Copies the frame's device outputs into `frame`, timed as the "readback" pass (host clock).
+  void read_back(Frame& frame, const Buffer& inverse, bool with_samples) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::size_t n = scene_.triangle_count();
+    std::vector<float> expected(n);
+    if (n > 0) context_->download(buffers_.expected, 0, expected.data(), n * sizeof(float));
+    frame.expected_counts.resize(n);
+    for (std::size_t t = 0; t < n; ++t) frame.expected_counts[t] = expected[t];
+    frame.max_density.resize(n);
+    frame.counts.resize(n);
+    frame.cdf.resize(n);
+    frame.inverse_permutation.resize(n);
+    if (n > 0) {
+      context_->download(buffers_.max_density, 0, frame.max_density.data(), n * sizeof(float));
+      context_->download(buffers_.counts, 0, frame.counts.data(), n * sizeof(std::uint64_t));
+      context_->download(buffers_.cdf, 0, frame.cdf.data(), n * sizeof(std::uint64_t));
+      context_->download(inverse, 0, frame.inverse_permutation.data(), n * sizeof(std::uint32_t));
+    }
+    frame.samples.resize(with_samples ? frame.sample_count : 0);
+    if (with_samples && frame.sample_count > 0)
+      context_->download(buffers_.samples, 0, frame.samples.data(), frame.sample_count * sizeof(Sample));
+    frame.passes.push_back(
+        {"readback", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
+  }
+
+  std::unique_ptr<vk::Context> context_;
+  vk::GpuScene scene_;
+  vk::Pipelines pipelines_;
+  vk::OrderedScan scan_;
+  FrameBuffers buffers_;
+  std::unique_ptr<vk::RasterPipeline> raster_;
+};
+
+}  // namespace
+
+std::unique_ptr<Sampler> make_vulkan_sampler(const MeshView& mesh, std::span<const DensityMapView> maps,
+                                             const VulkanOptions& options) {
+  return std::make_unique<VulkanSampler>(mesh, maps, options);
+}
+
+}  // namespace lightsampler

@@ -1,0 +1,101 @@
+// Shared by every pass: extensions, buffer types reached by device address, and the GPU twins
+// of the CPU backend's texel lookup (cpu/density.h) and sampling helpers.
+#ifndef LIGHTSAMPLER_COMMON_GLSL
+#define LIGHTSAMPLER_COMMON_GLSL
+
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference2 : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+#extension GL_EXT_shader_atomic_float : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_EXT_shader_subgroup_extended_types_int64 : require
+
+#include "shared.h"
+
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer Floats { float v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer Uints { uint v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer Uint64s { uint64_t v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer Doubles { double v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer Triangles { GpuTriangle v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer Maps { GpuMap v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer Samples { GpuSample v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer Totals { GpuTotals t; };
+
+// Element i of a uint64 array beyond 2^32 elements: index by address arithmetic.
+Uint64s uint64_at(uint64_t base, uint64_t i) { return Uint64s(base + i * 8ul); }
+
+// ---- texel lookup (cpu/density.h: address, cell_density, floor_to_int, point_density) ----
+
+uint address(int64_t i, uint n, uint addressing) {
+  if (i >= 0l && i < int64_t(n)) return uint(i);
+  if (addressing == kAddressClamp) return i < 0l ? 0u : n - 1u;
+  int64_t r = i % int64_t(n);
+  return uint(r < 0l ? r + int64_t(n) : r);
+}
+
+float cell_density(GpuMap map, uint64_t texels, int64_t ix, int64_t iy) {
+  uint index = map.offset + address(iy, map.height, map.addressing) * map.width +
+               address(ix, map.width, map.addressing);
+  return Floats(texels).v[index] * map.scale;
+}
+
+int64_t floor_to_int(float x) {
+  int64_t i = int64_t(x);  // truncates toward zero
+  return float(i) > x ? i - 1l : i;
+}
+
+float point_density(GpuMap map, uint64_t texels, float x, float y) {
+  return cell_density(map, texels, floor_to_int(x), floor_to_int(y));
+}
+
+// ---- random numbers (lightsampler/random.h) ----
+
+uvec4 philox4x32(uvec4 c, uvec2 k) {
+  const uint kM0 = 0xD2511F53u, kM1 = 0xCD9E8D57u, kW0 = 0x9E3779B9u, kW1 = 0xBB67AE85u;
+  for (int round = 0; round < 10; ++round) {
+    uint hi0, lo0, hi1, lo1;
+    umulExtended(kM0, c.x, hi0, lo0);
+    umulExtended(kM1, c.z, hi1, lo1);
+    c = uvec4(hi1 ^ c.y ^ k.x, lo1, hi0 ^ c.w ^ k.y, lo0);
+    k += uvec2(kW0, kW1);
+  }
+  return c;
+}
+
+float uniform_float(uint bits) { return float(bits >> 8) * (1.0 / 16777216.0); }
+
+// ---- Heitz's low-distortion map (lightsampler/triangle_map.h) ----
+
+vec2 triangle_map(float u0, float u1) {
+  float t0, t1;
+  if (u0 < u1) {
+    t0 = 0.5 * u0;
+    t1 = u1 - t0;
+  } else {
+    t1 = 0.5 * u1;
+    t0 = u0 - t1;
+  }
+  return vec2(t1, 1.0 - (u0 < u1 ? u1 : u0));
+}
+
+// Density at barycentrics (b1, b2) of a triangle, as the realization pass reads it.
+float triangle_density(GpuTriangle t, Maps maps, uint64_t texels, vec2 b) {
+  if (t.map == kNoMap) return 0.0;
+  return point_density(maps.v[t.map], texels, t.origin_x + b.x * t.edge1_x + b.y * t.edge2_x,
+                       t.origin_y + b.x * t.edge1_y + b.y * t.edge2_y);
+}
+
+bool uv_degenerate(GpuTriangle t) {
+  return t.edge1_x == 0.0 && t.edge1_y == 0.0 && t.edge2_x == 0.0 && t.edge2_y == 0.0;
+}
+
+// Non-negative floats order as their bits: atomicMax on uint is a float max.
+void atomic_max_float(Uints values, uint i, float value) {
+  atomicMax(values.v[i], floatBitsToUint(value));
+}
+
+#endif

@@ -1,0 +1,36 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Counting, first pass: clears the per-triangle results and settles the triangles that need no
+// cell enumeration (no map, no world area, UV-degenerate, or inside one lattice cell); the
+// others get their bounding-box cell count, the footprint the cell pass enumerates.
+#include "counting.glsl"
+#include "grid.glsl"
+
+layout(local_size_x = kWorkgroupSize) in;
+layout(push_constant) uniform Push { CountPush p; };
+
+void main() {
+  Triangles triangles = Triangles(p.triangles);
+  Maps maps = Maps(p.maps);
+  for (uint64_t i = thread_index(); i < uint64_t(p.triangle_count); i += thread_count()) {
+    uint tri = uint(i);
+    GpuTriangle t = triangles.v[tri];
+    float expected = 0.0, bound = 0.0;
+    uint64_t cells = 0ul;
+    if (t.map != kNoMap && t.area > 0.0) {
+      GpuMap map = maps.v[t.map];
+      TexelTriangle tt = texel_triangle(t);
+      if (uv_degenerate(t) || (tt.columns == 1ul && tt.rows == 1ul)) {
+        // Constant density over the triangle: read where the realization pass reads.
+        bound = uv_degenerate(t) ? point_density(map, p.texels, t.origin_x, t.origin_y)
+                                 : cell_density(map, p.texels, tt.first_x, tt.first_y);
+        expected = bound * t.area;
+      } else {
+        cells = tt.columns * tt.rows;
+      }
+    }
+    Floats(p.expected).v[tri] = expected;
+    Uints(p.max_density).v[tri] = floatBitsToUint(bound);
+    uint64_at(p.footprint, i).v[0] = cells;
+  }
+}

@@ -1,0 +1,51 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Plain rejection sampling (Algorithm 1): triangle by area (binary search in the area CDF),
+// uniform point, accepted against the global bound. Same stream as the CPU backend.
+#include "common.glsl"
+#include "grid.glsl"
+
+layout(local_size_x = kWorkgroupSize) in;
+layout(push_constant) uniform Push { RejectionPush p; };
+
+uint pick_triangle(double target) {
+  Doubles cdf = Doubles(p.area_cdf);
+  uint lo = 0u, hi = p.triangle_count - 1u;
+  while (lo < hi) {
+    uint mid = lo + (hi - lo) / 2u;
+    if (cdf.v[mid] > target) hi = mid; else lo = mid + 1u;
+  }
+  return lo;
+}
+
+void main() {
+  Totals totals = Totals(p.totals);
+  float bound = uintBitsToFloat(totals.t.max_density_bits);
+  double total_area = Doubles(p.area_cdf).v[p.triangle_count - 1u];
+  uvec2 key = uvec2(p.key0, p.key1);
+  Triangles triangles = Triangles(p.triangles);
+  Maps maps = Maps(p.maps);
+  uint64_t tries = 0ul, gave_up = 0ul;
+  for (uint64_t i = thread_index(); i < p.sample_count; i += thread_count()) {
+    uint tri;
+    vec2 b;
+    bool accepted;
+    uint attempt = 0u;
+    do {
+      uvec4 u = philox4x32(uvec4(uint(i), uint(i >> 32), attempt, 0u), key);
+      tri = pick_triangle(double(u.x) * (1.0 / 4294967296.0) * total_area);
+      b = triangle_map(uniform_float(u.y), uniform_float(u.z));
+      ++attempt;
+      accepted = uniform_float(u.w) * bound < triangle_density(triangles.v[tri], maps, p.texels, b);
+    } while (!accepted && attempt < p.max_tries);
+    Samples(p.samples + i * 12ul).v[0] = GpuSample(tri, b.x, b.y);
+    tries += attempt;
+    gave_up += accepted ? 0ul : 1ul;
+  }
+  tries = subgroupAdd(tries);
+  gave_up = subgroupAdd(gave_up);
+  if (subgroupElect()) {
+    if (tries > 0ul) atomicAdd(totals.t.candidates, tries);
+    if (gave_up > 0ul) atomicAdd(totals.t.exhausted, gave_up);
+  }
+}

@@ -1,0 +1,143 @@
+// Layouts shared by the GLSL passes and the C++ host code: buffer records, push constants and
+// workgroup sizes. Scalars and 64-bit device addresses only, padded by hand, so that std430 and
+// C++ agree; the host static_asserts sizes and offsets (lightsampler/src/vulkan/layouts.h).
+#ifndef LIGHTSAMPLER_SHADERS_SHARED_H
+#define LIGHTSAMPLER_SHADERS_SHARED_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace lightsampler::gpu {
+using uint = std::uint32_t;
+using uint64_t = std::uint64_t;
+#define LS_CONST inline constexpr
+#else
+#define LS_CONST const
+#endif
+
+LS_CONST uint kWorkgroupSize = 256;
+// Workgroups launched by grid-stride passes: each thread loops over its share of the work, so no
+// dispatch exceeds the 65535-workgroup limit whatever the element count.
+LS_CONST uint kMaxWorkgroups = 8192;
+LS_CONST uint kNoMap = 0xffffffffu;
+LS_CONST uint kAddressWrap = 0u;
+LS_CONST uint kAddressClamp = 1u;
+
+/// A triangle in its map's texel space (as the CPU backend's TexelTriangle): a point with
+/// barycentrics (b1, b2) is at origin + b1 edge1 + b2 edge2; zero edges: UV-degenerate.
+struct GpuTriangle {
+  float origin_x, origin_y;
+  float edge1_x, edge1_y;
+  float edge2_x, edge2_y;
+  float area;  // world units squared
+  uint map;    // kNoMap: zero density
+};
+
+struct GpuMap {
+  uint offset;  // first texel in the texel buffer
+  uint width;
+  uint height;
+  uint addressing;
+  float scale;
+  uint pad0, pad1, pad2;
+};
+
+struct GpuSample {
+  uint triangle;
+  float b1;
+  float b2;
+};
+
+/// Frame totals, written by the passes, read back by the host.
+struct GpuTotals {
+  float expected_total;  // N-bar (float atomic sum of N-bar_T)
+  uint max_density_bits; // rejection sampling's global bound, as float bits
+  uint64_t sample_count; // N
+  uint64_t scan_counter; // Algorithm 3's packed (processing index, partial sum)
+  uint64_t candidates;
+  uint64_t exhausted;
+  uint64_t cells;        // candidate cells of the compute counting path
+};
+
+/// Addresses of the resident and per-frame buffers; every pass takes the ones it needs.
+struct CountPush {
+  uint64_t triangles;    // GpuTriangle[T]
+  uint64_t maps;         // GpuMap[]
+  uint64_t texels;       // float[]
+  uint64_t expected;     // float[T], N-bar_T
+  uint64_t max_density;  // uint[T], D_T^max as float bits
+  uint64_t footprint;    // uint64[T], lattice cells of each triangle's bounding box
+  uint64_t cell_cdf;     // uint64[T], inclusive prefix sum of the footprints
+  uint64_t totals;       // GpuTotals
+  uint triangle_count;
+  uint pad0;
+};
+
+struct RasterPush {
+  uint64_t triangles;
+  uint64_t maps;
+  uint64_t texels;
+  uint64_t expected;
+  uint64_t max_density;
+  uint64_t footprint;        // zero: the setup pass already counted the triangle
+  float origin_x, origin_y;  // texel-space coordinate of the viewport's corner
+  float width, height;       // viewport size in texels
+  uint map;                  // the map whose triangles this draw rasterizes
+  uint pad0;
+};
+
+struct RoundPush {
+  uint64_t expected;
+  uint64_t counts;    // uint64[T], N_T
+  uint64_t totals;
+  double target;      // N_target; negative: none (the count emerges from the maps)
+  uint key0, key1;    // Philox key of the rounding stream
+  uint triangle_count;
+  uint pad0;
+};
+
+struct ScanPush {
+  uint64_t source;    // uint64[n]
+  uint64_t result;    // uint64[n]: inclusive scan (ordered) or the CDF (unordered)
+  uint64_t block_sums;
+  uint64_t inverse;   // uint[n] (unordered scan)
+  uint64_t totals;
+  uint64_t count;     // n
+  uint sum_bits;      // unordered: bits of the packed word holding the partial sum
+  uint pad0;
+};
+
+struct RealizePush {
+  uint64_t triangles;
+  uint64_t maps;
+  uint64_t texels;
+  uint64_t max_density;
+  uint64_t cdf;
+  uint64_t inverse;
+  uint64_t samples;
+  uint64_t totals;
+  uint key0, key1;
+  uint triangle_count;
+  uint max_tries;
+};
+
+struct RejectionPush {
+  uint64_t triangles;
+  uint64_t maps;
+  uint64_t texels;
+  uint64_t area_cdf;  // double[T], inclusive CDF of world areas
+  uint64_t samples;
+  uint64_t totals;
+  uint64_t sample_count;
+  uint key0, key1;
+  uint triangle_count;
+  uint max_tries;
+  uint texel_count;   // texels of map `map` (the global-max pass runs once per map)
+  uint map;
+};
+
+#ifdef __cplusplus
+}  // namespace lightsampler::gpu
+#undef LS_CONST
+#endif
+
+#endif

@@ -1,0 +1,245 @@
+// The Vulkan backend against the CPU backend (its oracle) and against the density itself. Runs
+// on any Vulkan device; in CI on lavapipe, where LIGHTSAMPLER_REQUIRE_VULKAN=1 turns a missing
+// device into a failure instead of a skip.
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "distribution_check.h"
+#include "lightsampler/vulkan.h"
+#include "vulkan/context.h"
+
+using namespace lightsampler;
+using trs_test::Map;
+using trs_test::Mesh;
+
+namespace {
+
+std::vector<DensityMapView> views(const std::vector<Map>& maps) {
+  std::vector<DensityMapView> v;
+  for (const Map& m : maps) v.push_back(m.view());
+  return v;
+}
+
+Frame generate(Sampler& sampler, FrameRequest request) {
+  Frame frame;
+  sampler.generate(request, frame);
+  return frame;
+}
+
+class VulkanSampler : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    validation_messages_ = vk::validation_message_count();
+    const Mesh quad = trs_test::quad(1, 1, 0, 0, 1, 1);
+    const Map map{{1.0f}, 1, 1};
+    try {
+      gpu({quad}, {map});
+    } catch (const VulkanUnavailable& e) {
+      const char* required = std::getenv("LIGHTSAMPLER_REQUIRE_VULKAN");
+      if (required && std::string(required) == "1") FAIL() << "Vulkan is required here: " << e.what();
+      GTEST_SKIP() << "no Vulkan device: " << e.what();
+    }
+  }
+
+  void TearDown() override {
+    EXPECT_EQ(vk::validation_message_count(), validation_messages_) << "the validation layer reported problems";
+  }
+
+  static std::unique_ptr<Sampler> gpu(const Mesh& mesh, const std::vector<Map>& maps) {
+    return make_vulkan_sampler(mesh.view(), views(maps), {.validation = true});
+  }
+  static std::unique_ptr<Sampler> cpu(const Mesh& mesh, const std::vector<Map>& maps) {
+    return make_cpu_sampler(mesh.view(), views(maps));
+  }
+
+ private:
+  std::size_t validation_messages_ = 0;
+};
+
+/// N-bar_T and D_T^max from both counting paths against the CPU backend. The GPU sums float
+/// contributions with float atomics: tolerance relative 1e-4 of the triangle's count (or of
+/// the largest count, for counts near zero). D_T^max must never be below the CPU's (it bounds
+/// the density); float rounding may count a cell that only touches a triangle's edge, so a
+/// higher (valid, looser) bound is allowed for at most 1% of the triangles.
+void expect_counts_agree(const Mesh& mesh, const std::vector<Map>& maps) {
+  const Frame reference = generate(*make_cpu_sampler(mesh.view(), views(maps)), {.realize = false});
+  double largest = 0;
+  for (double e : reference.expected_counts) largest = std::max(largest, e);
+  auto sampler = make_vulkan_sampler(mesh.view(), views(maps), {.validation = true});
+  for (Counting path : {Counting::compute, Counting::raster}) {
+    SCOPED_TRACE(to_string(path));
+    const Frame f = generate(*sampler, {.counting = path, .realize = false});
+    EXPECT_EQ(f.counting_used, to_string(path));
+    ASSERT_EQ(f.expected_counts.size(), reference.expected_counts.size());
+    std::size_t looser = 0;
+    for (std::size_t t = 0; t < f.expected_counts.size(); ++t) {
+      const double want = reference.expected_counts[t];
+      EXPECT_NEAR(f.expected_counts[t], want, 1e-4 * std::max(want, 1e-3 * largest)) << "triangle " << t;
+      EXPECT_GE(f.max_density[t], reference.max_density[t]) << "triangle " << t;
+      looser += f.max_density[t] != reference.max_density[t];
+    }
+    EXPECT_LE(looser, f.expected_counts.size() / 100 + 1);
+    EXPECT_NEAR(f.expected_total, reference.expected_total, 1e-4 * reference.expected_total);
+  }
+}
+
+}  // namespace
+
+TEST_F(VulkanSampler, CountsAgreeWithTheCpuInsideTheUnitSquare) {
+  expect_counts_agree(trs_test::random_triangles(300, 0.0f, 1.0f, 1), {trs_test::random_map(37, 23, 0.4, 2)});
+}
+
+TEST_F(VulkanSampler, CountsAgreeWithTheCpuBeyondTheUnitSquare) {
+  Map clamped = trs_test::random_map(16, 9, 0.3, 4);
+  clamped.addressing = Addressing::clamp;
+  expect_counts_agree(trs_test::random_triangles(200, -1.5f, 2.5f, 3), {trs_test::random_map(16, 9, 0.3, 4)});
+  expect_counts_agree(trs_test::random_triangles(200, -1.5f, 2.5f, 5), {clamped});
+}
+
+TEST_F(VulkanSampler, CountsAgreeWithTheCpuOnSliversTinyAndHugeTriangles) {
+  Mesh mesh = trs_test::random_triangles(100, 0.3f, 0.3005f, 7);  // inside a texel or two
+  const float p[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1e-3f, 0}};
+  const float sliver[3][2] = {{0.01f, 0.5f}, {0.99f, 0.5001f}, {0.5f, 0.5003f}};
+  mesh.add_triangle(p, sliver);
+  const float huge[3][2] = {{0, 0}, {1, 0}, {0, 1}};  // half of a 256^2 map
+  mesh.add_triangle(p, huge);
+  expect_counts_agree(mesh, {trs_test::random_map(256, 256, 0.2, 8)});
+}
+
+TEST_F(VulkanSampler, CountsAgreeWithTheCpuWithSeveralMaps) {
+  Mesh mesh = trs_test::random_triangles(90, 0.0f, 1.0f, 9);
+  for (std::size_t t = 0; t < 90; ++t) mesh.triangle_maps.push_back(t % 3 == 2 ? kNoMap : std::uint32_t(t % 3));
+  Map scaled = trs_test::random_map(8, 8, 0.0, 11);
+  scaled.scale = 3.5f;
+  expect_counts_agree(mesh, {trs_test::random_map(20, 30, 0.3, 10), scaled});
+}
+
+TEST_F(VulkanSampler, SamplesFollowTheDensity) {
+  for (const trs_test::Scenario& s : trs_test::scenarios()) {
+    auto sampler = gpu(s.mesh, {s.map});
+    for (Counting path : {Counting::compute, Counting::raster}) {
+      const Frame f = generate(*sampler, {.seed = s.seed, .target_count = s.target, .counting = path});
+      const auto result = trs_test::test_per_triangle(s, f.samples.span());
+      EXPECT_GT(result.dof, 100) << s.name;
+      EXPECT_TRUE(result.passes(trs_test::kDistributionAlpha)) << s.name << ", " << to_string(path) << "\n"
+                                                               << result.describe();
+    }
+    const Frame rs = generate(*sampler, {.seed = s.seed, .target_count = s.target, .method = Method::rejection});
+    const auto result = trs_test::test_all_cells(s, rs.samples.span());
+    EXPECT_TRUE(result.passes(trs_test::kDistributionAlpha)) << s.name << ", rejection\n" << result.describe();
+  }
+}
+
+TEST_F(VulkanSampler, SameSamplesAsTheCpuWhereTheCountsAgree) {
+  // Same Philox streams, same texel reads: a triangle given the same N_T and D_T^max by both
+  // backends gets bit-identical samples (the unordered scan leaves their order unspecified).
+  const Mesh mesh = trs_test::random_triangles(200, 0.0f, 1.0f, 12);
+  const std::vector<Map> maps = {trs_test::random_map(32, 32, 0.3, 13)};
+  const FrameRequest request{.seed = 5, .target_count = 100000};
+  const Frame a = generate(*cpu(mesh, maps), request), b = generate(*gpu(mesh, maps), request);
+  auto by_triangle = [](const Frame& f) {
+    std::vector<std::vector<std::tuple<float, float>>> v(f.counts.size());
+    for (const Sample& s : f.samples) v[s.triangle].emplace_back(s.b1, s.b2);
+    for (auto& samples : v) std::sort(samples.begin(), samples.end());
+    return v;
+  };
+  const auto sa = by_triangle(a), sb = by_triangle(b);
+  std::size_t compared = 0;
+  for (std::size_t t = 0; t < sa.size(); ++t) {
+    if (a.counts[t] != b.counts[t] || a.max_density[t] != b.max_density[t]) continue;
+    EXPECT_EQ(sa[t], sb[t]) << "triangle " << t;
+    ++compared;
+  }
+  EXPECT_GT(compared, sa.size() * 9 / 10) << "counts and bounds agree for most triangles";
+}
+
+TEST_F(VulkanSampler, UnorderedScanIsAPermutation) {
+  for (int triangles : {1, 255, 257, 1000, 70001}) {
+    SCOPED_TRACE(triangles);
+    const Mesh mesh = trs_test::random_triangles(triangles, 0.0f, 1.0f, std::uint64_t(triangles));
+    const Frame f = generate(*gpu(mesh, {trs_test::random_map(16, 16, 0.5, 3)}),
+                             {.target_count = 5.0 * triangles, .scan = ScanOrder::unordered, .realize = false});
+    ASSERT_EQ(f.scan_used, ScanOrder::unordered);
+    std::vector<char> seen(f.counts.size(), 0);
+    std::uint64_t previous = 0;
+    for (std::size_t p = 0; p < f.cdf.size(); ++p) {
+      const std::uint32_t t = f.inverse_permutation[p];
+      ASSERT_LT(t, f.counts.size());
+      ASSERT_FALSE(seen[t]) << "triangle " << t << " twice";
+      seen[t] = 1;
+      ASSERT_EQ(f.cdf[p] - previous, f.counts[t]) << "processing index " << p;
+      previous = f.cdf[p];
+    }
+    EXPECT_EQ(previous, f.sample_count);
+  }
+}
+
+TEST_F(VulkanSampler, OrderedScanIsThePrefixSum) {
+  const Mesh mesh = trs_test::random_triangles(70001, 0.0f, 1.0f, 4);  // three scan levels
+  const Frame f = generate(*gpu(mesh, {trs_test::random_map(16, 16, 0.5, 3)}),
+                           {.target_count = 1e6, .scan = ScanOrder::ordered, .realize = false});
+  std::uint64_t sum = 0;
+  for (std::size_t t = 0; t < f.counts.size(); ++t) {
+    sum += f.counts[t];
+    ASSERT_EQ(f.cdf[t], sum) << "triangle " << t;
+    ASSERT_EQ(f.inverse_permutation[t], t);
+  }
+}
+
+TEST_F(VulkanSampler, OutputsBeyond128MiBAnd65535Workgroups) {
+  // 17 million samples: 204 MB of output, and the work of more than 65535 workgroups of 256.
+  const Mesh mesh = trs_test::quad(2, 1, 0, 0, 1, 1);
+  const std::vector<Map> maps = {trs_test::random_map(64, 32, 0.5, 14)};
+  auto sampler = gpu(mesh, maps);
+  const Frame f = generate(*sampler, {.seed = 3, .target_count = 17e6});
+  ASSERT_EQ(f.samples.size(), f.sample_count);
+  EXPECT_GT(f.sample_count * sizeof(Sample), std::uint64_t(128) << 20);
+  EXPECT_GT(f.sample_count, 65535ull * 256);
+  std::uint64_t bad = 0;
+  for (const Sample& s : f.samples)
+    bad += !(s.triangle < 2 && s.b1 >= 0 && s.b2 >= 0 && s.b1 + s.b2 <= 1 && sampler->density(s.triangle, s.b1, s.b2) > 0);
+  EXPECT_EQ(bad, 0u);
+}
+
+TEST_F(VulkanSampler, AllZeroMapGivesNoSamples) {
+  auto sampler = gpu(trs_test::quad(1, 1, 0, 0, 1, 1), {Map{std::vector<float>(16, 0.0f), 4, 4}});
+  for (Method method : {Method::trs, Method::rejection}) {
+    const Frame f = generate(*sampler, {.target_count = 1e5, .method = method});
+    EXPECT_EQ(f.sample_count, 0u) << to_string(method);
+    EXPECT_TRUE(f.samples.empty());
+  }
+}
+
+TEST_F(VulkanSampler, UpdatedMapChangesTheNextFrame) {
+  const Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
+  const Map left{{1.0f, 0.0f}, 2, 1}, right{{0.0f, 1.0f, 0.0f, 1.0f}, 2, 2};
+  auto sampler = gpu(mesh, {left});
+  for (const Sample& s : generate(*sampler, {.seed = 1, .target_count = 5000}).samples)
+    ASSERT_LT(lightsampler::uv(mesh.view(), s).x, 0.5f);
+  sampler->update_map(0, right.view());  // a new size too
+  for (const Sample& s : generate(*sampler, {.seed = 2, .target_count = 5000}).samples)
+    ASSERT_GE(lightsampler::uv(mesh.view(), s).x, 0.5f);
+  const Map right_same_size{{0.0f, 2.0f}, 2, 1};
+  sampler->update_map(0, right_same_size.view());  // in place
+  for (const Sample& s : generate(*sampler, {.seed = 3, .target_count = 5000}).samples)
+    ASSERT_GE(lightsampler::uv(mesh.view(), s).x, 0.5f);
+}
+
+TEST_F(VulkanSampler, ReportsTheDeviceAndPerPassTimes) {
+  auto sampler = gpu(trs_test::quad(1, 1, 0, 0, 1, 1), {Map{{1.0f, 2.0f}, 2, 1}});
+  EXPECT_EQ(sampler->backend(), "vulkan");
+  EXPECT_FALSE(sampler->device().empty());
+  const Frame f = generate(*sampler, {.target_count = 1000});
+  std::vector<std::string> names;
+  for (const PassTime& p : f.passes) {
+    names.push_back(p.name);
+    EXPECT_GE(p.ms, 0.0) << p.name;
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"counting", "rounding", "scan", "realization", "readback"}));
+}
