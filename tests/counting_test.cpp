@@ -44,13 +44,16 @@ Reference reference_integral(const trs_test::Mesh& mesh, const trs_test::Map& ma
   return r;
 }
 
-void expect_matches_reference(const trs_test::Mesh& mesh, const trs_test::Map& map) {
+/// The counting pass alone (no samples) on the CPU backend.
+Frame count_only(const trs_test::Mesh& mesh, const trs_test::Map& map, unsigned threads = 0) {
   const DensityMapView view = map.view();
-  auto sampler = make_cpu_sampler(mesh.view(), {&view, 1});
   Frame frame;
-  FrameRequest request;
-  request.realize = false;
-  sampler->generate(request, frame);
+  make_cpu_sampler(mesh.view(), {&view, 1}, {threads})->generate({.realize = false}, frame);
+  return frame;
+}
+
+void expect_matches_reference(const trs_test::Mesh& mesh, const trs_test::Map& map) {
+  const Frame frame = count_only(mesh, map);
   double total = 0;
   for (std::size_t t = 0; t < frame.expected_counts.size(); ++t) {
     const Reference r = reference_integral(mesh, map, t);
@@ -96,12 +99,7 @@ TEST(Counting, ConstantMapIntegratesToDensityTimesArea) {
   // A 3 x 2 world quad over the whole map, at density 4 per unit area: N-bar = 24.
   const trs_test::Mesh mesh = trs_test::quad(3, 2, 0, 0, 1, 1);
   const trs_test::Map map{std::vector<float>(100 * 70, 4.0f), 100, 70};
-  const DensityMapView view = map.view();
-  auto sampler = make_cpu_sampler(mesh.view(), {&view, 1});
-  Frame frame;
-  FrameRequest request;
-  request.realize = false;
-  sampler->generate(request, frame);
+  const Frame frame = count_only(mesh, map);
   EXPECT_NEAR(frame.expected_total, 24.0, 1e-10);
   EXPECT_NEAR(frame.expected_counts[0], 12.0, 1e-10);
   EXPECT_EQ(frame.max_density[0], 4.0f);
@@ -111,16 +109,11 @@ TEST(Counting, HugeTrianglesSplitAcrossTasksGiveTheSameSumOnAnyThreadCount) {
   // Two triangles over a 1024^2 map: each spans ~500k texels, far more than one task's share.
   const trs_test::Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
   const trs_test::Map map = trs_test::random_map(1024, 1024, 0.5, 11);
-  const DensityMapView view = map.view();
   double texel_sum = 0;
   for (float t : map.texels) texel_sum += t;
   std::vector<double> first;
   for (unsigned threads : {1u, 2u}) {
-    auto sampler = make_cpu_sampler(mesh.view(), {&view, 1}, {threads});
-    Frame frame;
-    FrameRequest request;
-    request.realize = false;
-    sampler->generate(request, frame);
+    const Frame frame = count_only(mesh, map, threads);
     // World area 1 spread over 1024^2 texels.
     EXPECT_NEAR(frame.expected_total, texel_sum / (1024.0 * 1024.0), 1e-9 * texel_sum / (1024.0 * 1024.0));
     std::vector<double> counts(frame.expected_counts.begin(), frame.expected_counts.end());

@@ -210,11 +210,7 @@ class VulkanSampler final : public Sampler {
       d.barrier();
       d.timestamp("realization");
     }
-    add_passes(frame, context_->submit(d));
-    const gpu::GpuTotals realized = totals();
-    frame.candidates = realized.candidates;
-    frame.exhausted = realized.exhausted;
-    if (request.read_back) read_back(frame, inverse, request.realize);
+    finish(d, request, frame, {.counted = true, .inverse = &inverse});
   }
 
   void generate_rejection(const FrameRequest& request, Frame& frame) {
@@ -246,46 +242,54 @@ class VulkanSampler final : public Sampler {
     const bool empty = !(bound > 0) || n_tri == 0 || !(scene_.total_area() > 0);
     frame.sample_count = empty ? 0 : cpu::round_total(target, request.seed);
     frame.scan_used = ScanOrder::ordered;
-    if (!request.realize || frame.sample_count == 0) {
-      if (request.read_back) frame.samples.resize(0);
-      return;
-    }
-    ensure_samples(frame.sample_count);
+    if (request.realize) ensure_samples(frame.sample_count);
     Commands d = context_->begin();
-    const PhiloxKey key = stream_key(request.seed, Stream::rejection);
-    const gpu::RejectionPush push{scene_.triangles(), scene_.map_records(), scene_.texels(), scene_.area_cdf(),
-                                  buffers_.samples.address(), buffers_.totals.address(), frame.sample_count,
-                                  key[0], key[1], n_tri, request.max_tries, 0, 0};
-    d.dispatch(pipelines_.rejection, &push, sizeof push, workgroups_for(frame.sample_count));
-    d.barrier();
-    d.timestamp("realization");
+    if (request.realize && frame.sample_count > 0) {
+      const PhiloxKey key = stream_key(request.seed, Stream::rejection);
+      const gpu::RejectionPush push{scene_.triangles(), scene_.map_records(), scene_.texels(), scene_.area_cdf(),
+                                    buffers_.samples.address(), buffers_.totals.address(), frame.sample_count,
+                                    key[0], key[1], n_tri, request.max_tries, 0, 0};
+      d.dispatch(pipelines_.rejection, &push, sizeof push, workgroups_for(frame.sample_count));
+      d.barrier();
+      d.timestamp("realization");
+    }
+    finish(d, request, frame, {.counted = !request.target_count});
+  }
+
+  /// What a frame computed on the device, to copy back.
+  struct Outputs {
+    bool counted = false;             ///< N-bar_T and D_T^max
+    const Buffer* inverse = nullptr;  ///< N_T, the CDF and this inverse permutation (TRS)
+  };
+
+  /// Runs the last submission, then reads its totals and the outputs the request asks for.
+  void finish(Commands& d, const FrameRequest& request, Frame& frame, Outputs outputs) {
     add_passes(frame, context_->submit(d));
     const gpu::GpuTotals realized = totals();
     frame.candidates = realized.candidates;
     frame.exhausted = realized.exhausted;
-    if (request.read_back) {
-      frame.samples.resize(frame.sample_count);
-      context_->download(buffers_.samples, 0, frame.samples.data(), frame.sample_count * sizeof(Sample));
-    }
+    if (request.read_back) read_back(frame, outputs, request.realize);
   }
 
-  /// Copies the frame's device outputs into `frame`, timed as the "readback" pass (host clock).
-  void read_back(Frame& frame, const Buffer& inverse, bool with_samples) {
+  /// Copies the frame's device outputs into `frame` (what was not computed is left empty, as by
+  /// the CPU backend), timed as the "readback" pass on the host clock.
+  void read_back(Frame& frame, Outputs outputs, bool with_samples) {
     const auto start = std::chrono::steady_clock::now();
     const std::size_t n = scene_.triangle_count();
-    std::vector<float> expected(n);
-    if (n > 0) context_->download(buffers_.expected, 0, expected.data(), n * sizeof(float));
-    frame.expected_counts.resize(n);
-    for (std::size_t t = 0; t < n; ++t) frame.expected_counts[t] = expected[t];
-    frame.max_density.resize(n);
-    frame.counts.resize(n);
-    frame.cdf.resize(n);
-    frame.inverse_permutation.resize(n);
-    if (n > 0) {
-      context_->download(buffers_.max_density, 0, frame.max_density.data(), n * sizeof(float));
+    const std::size_t counted = outputs.counted ? n : 0, scanned = outputs.inverse ? n : 0;
+    std::vector<float> expected(counted);
+    if (counted > 0) context_->download(buffers_.expected, 0, expected.data(), n * sizeof(float));
+    frame.expected_counts.resize(counted);
+    for (std::size_t t = 0; t < counted; ++t) frame.expected_counts[t] = expected[t];
+    frame.max_density.resize(counted);
+    if (counted > 0) context_->download(buffers_.max_density, 0, frame.max_density.data(), n * sizeof(float));
+    frame.counts.resize(scanned);
+    frame.cdf.resize(scanned);
+    frame.inverse_permutation.resize(scanned);
+    if (scanned > 0) {
       context_->download(buffers_.counts, 0, frame.counts.data(), n * sizeof(std::uint64_t));
       context_->download(buffers_.cdf, 0, frame.cdf.data(), n * sizeof(std::uint64_t));
-      context_->download(inverse, 0, frame.inverse_permutation.data(), n * sizeof(std::uint32_t));
+      context_->download(*outputs.inverse, 0, frame.inverse_permutation.data(), n * sizeof(std::uint32_t));
     }
     frame.samples.resize(with_samples ? frame.sample_count : 0);
     if (with_samples && frame.sample_count > 0)
