@@ -16,6 +16,8 @@ function(lightsampler_embed_shaders)
     message(FATAL_ERROR "lightsampler_embed_shaders needs TARGET and OUTPUT_DIR")
   endif()
   set(embed_script ${CMAKE_CURRENT_FUNCTION_LIST_DIR}/embed_spirv.cmake)
+  # glslangValidator writes into this folder but does not create it.
+  file(MAKE_DIRECTORY ${arg_OUTPUT_DIR}/spirv)
   set(headers)
   foreach(source IN LISTS arg_SOURCES)
     get_filename_component(source ${source} ABSOLUTE)

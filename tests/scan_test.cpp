@@ -106,6 +106,7 @@ TEST(Scan, BeyondTwoToThe32SamplesTheCountsStayExact) {
   Frame frame;
   FrameRequest request;
   request.target_count = 5e9;
+  request.scan = ScanOrder::unordered;
   request.realize = false;
   sampler->generate(request, frame);
   EXPECT_EQ(frame.scan_used, ScanOrder::unordered);
@@ -114,7 +115,7 @@ TEST(Scan, BeyondTwoToThe32SamplesTheCountsStayExact) {
   EXPECT_TRUE(frame.samples.empty());
 }
 
-TEST(Scan, AutomaticFallsBackToOrderedWhenThePackedCounterWouldOverflow) {
+TEST(Scan, AnUnorderedScanThatWouldOverflowIsAnError) {
   // Two triangles need 2 index bits, leaving 62 for the sum: 2^63 samples do not fit.
   const trs_test::Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
   const trs_test::Map map{{1.0f}, 1, 1};
@@ -125,7 +126,7 @@ TEST(Scan, AutomaticFallsBackToOrderedWhenThePackedCounterWouldOverflow) {
   request.target_count = 0x1p63;
   request.realize = false;
   sampler->generate(request, frame);
-  EXPECT_EQ(frame.scan_used, ScanOrder::ordered);
+  EXPECT_EQ(frame.scan_used, ScanOrder::ordered);  // the CPU's automatic choice
   EXPECT_EQ(frame.cdf[1], frame.sample_count);
   EXPECT_EQ(frame.cdf[0] + frame.counts[1], frame.cdf[1]);
 

@@ -180,6 +180,20 @@ TEST_F(VulkanSampler, UnorderedScanIsAPermutation) {
   }
 }
 
+TEST_F(VulkanSampler, AutomaticScanFallsBackToOrderedWhenThePackedCounterWouldOverflow) {
+  // Two triangles need 2 index bits, leaving 62 for the sum: 2^63 samples do not fit.
+  auto sampler = gpu(trs_test::quad(1, 1, 0, 0, 1, 1), {Map{{1.0f}, 1, 1}});
+  const Frame small = generate(*sampler, {.target_count = 1000, .realize = false});
+  EXPECT_EQ(small.scan_used, ScanOrder::unordered);
+  const Frame huge = generate(*sampler, {.target_count = 0x1p63, .realize = false});
+  EXPECT_EQ(huge.scan_used, ScanOrder::ordered);
+  EXPECT_EQ(huge.cdf[1], huge.sample_count);
+  EXPECT_EQ(huge.cdf[0] + huge.counts[1], huge.cdf[1]);
+  // Asked for explicitly: an error, never a silent overflow.
+  EXPECT_THROW(generate(*sampler, {.target_count = 0x1p63, .scan = ScanOrder::unordered, .realize = false}),
+               std::overflow_error);
+}
+
 TEST_F(VulkanSampler, OrderedScanIsThePrefixSum) {
   const Mesh mesh = trs_test::random_triangles(70001, 0.0f, 1.0f, 4);  // three scan levels
   const Frame f = generate(*gpu(mesh, {trs_test::random_map(16, 16, 0.5, 3)}),

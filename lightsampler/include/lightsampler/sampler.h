@@ -20,8 +20,9 @@ namespace lightsampler {
 enum class Method { trs, rejection };
 
 /// How the per-triangle counts are turned into a CDF. `unordered` is the paper's Algorithm 3
-/// (one packed 64-bit atomic); `ordered` is a classic prefix sum; `automatic` takes unordered
-/// unless the triangle count and the total do not fit one 64-bit word together.
+/// (one packed 64-bit atomic); `ordered` is a classic prefix sum. `automatic` takes the faster
+/// of the two for the backend: ordered on the CPU (measured faster there, docs/benchmarks.md),
+/// unordered on the GPU unless the triangle count and the total do not fit one 64-bit word.
 enum class ScanOrder { automatic, unordered, ordered };
 
 /// How the Vulkan backend enumerates (triangle, texel) pairs in the counting pass: `raster`

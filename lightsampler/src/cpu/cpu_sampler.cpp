@@ -143,7 +143,8 @@ class CpuSampler final : public Sampler {
       throw std::overflow_error(std::to_string(n) + " triangles and " +
                                 std::to_string(frame.sample_count) +
                                 " samples do not fit one 64-bit packed counter; use the ordered scan");
-    frame.scan_used = request.scan == ScanOrder::ordered || !fits ? ScanOrder::ordered : ScanOrder::unordered;
+    // Automatic: ordered, which is faster on the CPU than contending for one atomic.
+    frame.scan_used = request.scan == ScanOrder::unordered ? ScanOrder::unordered : ScanOrder::ordered;
     if (frame.scan_used == ScanOrder::unordered)
       cpu::unordered_scan(frame.counts.span(), frame.sample_count, kScanBlock, frame.cdf,
                           frame.inverse_permutation);

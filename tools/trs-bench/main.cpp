@@ -1,0 +1,179 @@
+// trs-bench: Triangle Rejection Sampling against plain rejection sampling on generated meshes and
+// density maps. Needs nothing but the lightsampler library, so that the same program runs on a
+// machine without asset files or image libraries. See docs/benchmarks.md.
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "experiments.h"
+
+namespace {
+
+using namespace trs_bench;
+
+struct CommandLine {
+  std::vector<std::string> meshes = {"grid:5k", "sphere:100k", "grid:2M"};
+  std::vector<std::string> maps = {"smooth", "sparse", "hifreq"};
+  std::uint32_t map_size = 2048;
+  std::vector<std::string> methods = {"trs", "rs"};
+  std::vector<std::string> experiments = {"sampling", "scan"};
+  std::string csv;
+  ExperimentSettings settings;
+};
+
+/// --quick: a smoke run of a few seconds; options given explicitly still win.
+void apply_quick(const CLI::App& app, CommandLine& cl) {
+  if (!app.count("--meshes")) cl.meshes = {"grid:5k"};
+  if (!app.count("--map-size")) cl.map_size = 256;
+  if (!app.count("--counts")) cl.settings.counts = {1e3, 1e4, 1e5};
+  if (!app.count("--repeats")) cl.settings.measure.repeats = 2;
+  if (!app.count("--budget")) cl.settings.measure.budget_s = 2;
+  if (!app.count("--scan-target")) cl.settings.scan_target = 1e4;
+}
+
+/// CLI11 validator: empty when `text` is a mesh spec, else why not.
+std::string check_mesh_spec(const std::string& text) {
+  try {
+    parse_mesh_spec(text);
+    return {};
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+}
+
+bool contains(const std::vector<std::string>& list, const std::string& item) {
+  return std::find(list.begin(), list.end(), item) != list.end();
+}
+
+template <class F>
+double seconds_of(F&& f) {
+  const auto start = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+Inputs generate_inputs(const CommandLine& cl) {
+  Inputs inputs;
+  for (const auto& spec : cl.meshes) {
+    const double s = seconds_of([&] { inputs.meshes.push_back(make_mesh(parse_mesh_spec(spec))); });
+    std::cout << "mesh " << spec << ": " << inputs.meshes.back().name << " with "
+              << inputs.meshes.back().triangle_count() << " triangles (" << s << " s)\n";
+  }
+  for (const auto& name : cl.maps) {
+    const double s =
+        seconds_of([&] { inputs.maps.push_back(make_map(parse_map_kind(name), cl.map_size)); });
+    std::cout << "map " << name << ": " << cl.map_size << "x" << cl.map_size << ", "
+              << 100 * coverage(inputs.maps.back()) << "% of texels non-zero (" << s << " s)\n";
+  }
+  return inputs;
+}
+
+/// The backend as the experiments will see it, from a one-triangle sampler.
+void print_backend(unsigned threads) {
+  const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, uvs[] = {0, 0, 1, 0, 0, 1}, texel[] = {1};
+  const std::uint32_t indices[] = {0, 1, 2};
+  const lightsampler::DensityMapView map{texel, 1, 1};
+  const auto sampler =
+      lightsampler::make_cpu_sampler({positions, uvs, indices, {}}, {&map, 1}, {threads});
+  std::cout << "backend " << sampler->backend() << " on " << sampler->device() << ", "
+            << sampler->threads() << " threads\n";
+}
+
+int run(const CommandLine& cl) {
+  ExperimentSettings settings = cl.settings;
+  // Ascending, because skipping extrapolates from the smaller counts.
+  std::sort(settings.counts.begin(), settings.counts.end());
+  for (const auto& method : cl.methods)
+    settings.methods.push_back(method == "trs" ? lightsampler::Method::trs
+                                               : lightsampler::Method::rejection);
+
+  print_backend(settings.threads);
+  std::cout << "warm-up " << settings.measure.warmup << ", repeats " << settings.measure.repeats
+            << " (medians), budget " << settings.measure.budget_s << " s per case\n";
+  const Inputs inputs = generate_inputs(cl);
+
+  lightsampler::Frame frame;
+  Recorder recorder(std::cout, cl.csv);
+  if (contains(cl.experiments, "sampling")) {
+    run_sampling_experiment(inputs, settings, frame, recorder);
+    print_speedups(std::cout, recorder.results());
+  }
+  if (contains(cl.experiments, "scan")) run_scan_experiment(inputs, settings, frame, recorder);
+  if (!cl.csv.empty()) std::cout << "\nwrote " << cl.csv << "\n";
+
+  const auto problems = sanity_problems(recorder.results());
+  for (const auto& problem : problems) std::cerr << "trs-bench: wrong output: " << problem << "\n";
+  return problems.empty() ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Benchmarks Triangle Rejection Sampling against plain rejection sampling on "
+      "generated meshes and density maps; prints tables and writes CSV."};
+  CommandLine cl;
+  cl.settings.counts = {1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
+  bool quick = false;
+  app.add_option("--counts", cl.settings.counts, "Target sample counts")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--meshes", cl.meshes,
+                 "Meshes as KIND:TRIANGLES, KIND grid or sphere, e.g. grid:100k,sphere:2M")
+      ->delimiter(',')
+      ->check(check_mesh_spec)
+      ->capture_default_str();
+  app.add_option("--maps", cl.maps, "Density maps")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"smooth", "sparse", "hifreq"}))
+      ->capture_default_str();
+  app.add_option("--map-size", cl.map_size, "Width and height of the density maps, texels")
+      ->check(CLI::Range(1u, 1u << 15))
+      ->capture_default_str();
+  app.add_option("--methods", cl.methods,
+                 "Methods: trs (Triangle Rejection Sampling), rs (plain rejection sampling)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"trs", "rs"}))
+      ->capture_default_str();
+  app.add_option("--experiments", cl.experiments,
+                 "sampling (time vs sample count), scan (scan orders)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"sampling", "scan"}))
+      ->capture_default_str();
+  app.add_option("--threads", cl.settings.threads, "Worker threads; 0: every hardware thread")
+      ->capture_default_str();
+  app.add_option("--repeats", cl.settings.measure.repeats, "Timed frames per case (median)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--warmup", cl.settings.measure.warmup, "Untimed frames before them")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--budget", cl.settings.measure.budget_s,
+                 "Seconds per case: a case whose extrapolated frame time exceeds it is skipped, "
+                 "and a case stops repeating once it has used it")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--scan-target", cl.settings.scan_target,
+                 "Target sample count of the scan experiment")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--csv", cl.csv,
+                 "Write the results as CSV to FILE (rewritten atomically after each case)");
+  app.add_flag("--quick", quick, "Smoke run: grid:5k, 256x256 maps, counts 1e3..1e5, 2 repeats");
+  CLI11_PARSE(app, argc, argv);
+  if (quick) apply_quick(app, cl);
+
+  try {
+    return run(cl);
+  } catch (const std::exception& e) {
+    std::cerr << "trs-bench: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,57 @@
+#pragma once
+// Results as an aligned table on the terminal (a row as each case finishes) and as CSV, rewritten
+// atomically after every case so that an interrupted run keeps what it measured.
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "measure.h"
+
+namespace trs_bench {
+
+struct CaseResult {
+  /// "sampling" (time vs sample count) or "scan" (scan orders, no realization)
+  std::string experiment;
+  std::string mesh;
+  std::uint64_t triangles = 0;
+  std::string map;
+  std::uint32_t map_size = 0;
+  std::string method;  ///< "trs" or "rs"
+  std::string scan;    ///< the scan order used; "-" for plain rejection sampling
+  double target = 0;
+  std::string backend;
+  std::string device;
+  unsigned threads = 0;
+  std::optional<Measurement> measured;  ///< empty: skipped
+  double estimate_ms = 0;               ///< for a skipped case: its extrapolated frame time
+};
+
+class Recorder {
+ public:
+  /// `csv` empty: no CSV.
+  Recorder(std::ostream& table, std::filesystem::path csv);
+
+  /// Prints a section title and the column header.
+  void begin_section(const std::string& title);
+  /// Prints the row and rewrites the CSV.
+  void add(CaseResult result);
+
+  const std::vector<CaseResult>& results() const { return results_; }
+
+ private:
+  void write_csv() const;
+
+  std::ostream& table_;
+  std::filesystem::path csv_;
+  std::vector<CaseResult> results_;
+};
+
+/// TRS against plain rejection sampling for each (mesh, map, target) of the sampling experiment
+/// where both ran or were estimated: the speed-up is rs / trs total time.
+void print_speedups(std::ostream& out, const std::vector<CaseResult>& results);
+
+}  // namespace trs_bench
