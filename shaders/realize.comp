@@ -32,10 +32,12 @@ void main() {
     GpuTriangle t = triangles.v[tri];
     GpuMap map = maps.v[t.map];
     float bound = uintBitsToFloat(Uints(p.max_density).v[tri]);
-    vec2 b;
-    bool accepted;
+    vec2 b = vec2(0.0);
+    bool accepted = false;
     uint attempt = 0u;
-    do {
+    // A while loop with its flag set before it: a do-while left `accepted` wrong after the loop
+    // on lavapipe (the exhausted tally went astray while the samples stayed right).
+    while (!accepted && attempt < p.max_tries) {
       uvec4 u = philox4x32(uvec4(tri, uint(rank), uint(rank >> 32), attempt), key);
       b = triangle_map(uniform_float(u.x), uniform_float(u.y));
       // precise: no fused multiply-add, so the texel read is the CPU backend's, bit for bit.
@@ -43,7 +45,7 @@ void main() {
       precise float y = t.origin_y + b.x * t.edge1_y + b.y * t.edge2_y;
       ++attempt;
       accepted = uniform_float(u.z) * bound < point_density(map, p.texels, x, y);
-    } while (!accepted && attempt < p.max_tries);
+    }
     Samples(p.samples + i * 12ul).v[0] = GpuSample(tri, b.x, b.y);
     tries += attempt;
     gave_up += accepted ? 0ul : 1ul;

@@ -27,17 +27,19 @@ void main() {
   Maps maps = Maps(p.maps);
   uint64_t tries = 0ul, gave_up = 0ul;
   for (uint64_t i = thread_index(); i < p.sample_count; i += thread_count()) {
-    uint tri;
-    vec2 b;
-    bool accepted;
+    uint tri = 0u;
+    vec2 b = vec2(0.0);
+    bool accepted = false;
     uint attempt = 0u;
-    do {
+    // A while loop with its flag set before it: a do-while left `accepted` wrong after the loop
+    // on lavapipe (the exhausted tally went astray while the samples stayed right).
+    while (!accepted && attempt < p.max_tries) {
       uvec4 u = philox4x32(uvec4(uint(i), uint(i >> 32), attempt, 0u), key);
       tri = pick_triangle(double(u.x) * (1.0 / 4294967296.0) * total_area);
       b = triangle_map(uniform_float(u.y), uniform_float(u.z));
       ++attempt;
       accepted = uniform_float(u.w) * bound < triangle_density(triangles.v[tri], maps, p.texels, b);
-    } while (!accepted && attempt < p.max_tries);
+    }
     Samples(p.samples + i * 12ul).v[0] = GpuSample(tri, b.x, b.y);
     tries += attempt;
     gave_up += accepted ? 0ul : 1ul;

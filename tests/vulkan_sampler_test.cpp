@@ -125,12 +125,14 @@ TEST_F(VulkanSampler, SamplesFollowTheDensity) {
     auto sampler = gpu(s.mesh, {s.map});
     for (Counting path : {Counting::compute, Counting::raster}) {
       const Frame f = generate(*sampler, {.seed = s.seed, .target_count = s.target, .counting = path});
+      EXPECT_EQ(f.exhausted, 0u) << s.name;
       const auto result = trs_test::test_per_triangle(s, f.samples.span());
       EXPECT_GT(result.dof, 100) << s.name;
       EXPECT_TRUE(result.passes(trs_test::kDistributionAlpha)) << s.name << ", " << to_string(path) << "\n"
                                                                << result.describe();
     }
     const Frame rs = generate(*sampler, {.seed = s.seed, .target_count = s.target, .method = Method::rejection});
+    EXPECT_EQ(rs.exhausted, 0u) << s.name;
     const auto result = trs_test::test_all_cells(s, rs.samples.span());
     EXPECT_TRUE(result.passes(trs_test::kDistributionAlpha)) << s.name << ", rejection\n" << result.describe();
   }
@@ -149,6 +151,7 @@ TEST_F(VulkanSampler, SameSamplesAsTheCpuWhereTheCountsAgree) {
     for (auto& samples : v) std::sort(samples.begin(), samples.end());
     return v;
   };
+  EXPECT_EQ(b.exhausted, 0u);
   const auto sa = by_triangle(a), sb = by_triangle(b);
   std::size_t compared = 0;
   for (std::size_t t = 0; t < sa.size(); ++t) {

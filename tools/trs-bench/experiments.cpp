@@ -15,13 +15,40 @@ using lightsampler::ScanOrder;
 
 constexpr std::uint64_t kFirstSeed = 1;
 
-std::unique_ptr<Sampler> make_sampler(const Mesh& mesh, const DensityMap& map, unsigned threads) {
+using lightsampler::Backend;
+
+std::unique_ptr<Sampler> make_sampler(const Mesh& mesh, const DensityMap& map, Backend backend,
+                                      const ExperimentSettings& settings) {
   const lightsampler::DensityMapView view = map.view();
-  return lightsampler::make_cpu_sampler(mesh.view(), {&view, 1}, {threads});
+  return lightsampler::make_sampler(mesh.view(), {&view, 1},
+                                    {.backend = backend,
+                                     .cpu = {settings.threads},
+                                     .vulkan = {.device = settings.vulkan_device}});
+}
+
+/// One sampler per backend the variants use, for one (mesh, map).
+struct Samplers {
+  std::unique_ptr<Sampler> cpu, vulkan;
+
+  Samplers(const Mesh& mesh, const DensityMap& map, const ExperimentSettings& settings) {
+    for (const Variant& v : settings.variants) {
+      auto& slot = v.backend == Backend::vulkan ? vulkan : cpu;
+      if (!slot) slot = make_sampler(mesh, map, v.backend, settings);
+    }
+  }
+  Sampler& of(const Variant& v) { return v.backend == Backend::vulkan ? *vulkan : *cpu; }
+};
+
+FrameRequest request_for(const Variant& v) {
+  FrameRequest request;
+  request.method = v.method;
+  request.counting = v.counting;
+  request.read_back = false;  // the Vulkan backend's outputs stay on the device
+  return request;
 }
 
 CaseResult describe_case(const char* experiment, const Mesh& mesh, const DensityMap& map,
-                         const Sampler& sampler, const FrameRequest& request) {
+                         const Sampler& sampler, const FrameRequest& request, const std::string& engine) {
   CaseResult r;
   r.experiment = experiment;
   r.mesh = mesh.name;
@@ -32,6 +59,7 @@ CaseResult describe_case(const char* experiment, const Mesh& mesh, const Density
   r.scan = request.method == Method::trs ? lightsampler::to_string(request.scan) : "-";
   r.target = request.target_count.value_or(0);
   r.backend = sampler.backend();
+  r.engine = engine;
   r.device = sampler.device();
   r.threads = sampler.threads();
   return r;
@@ -67,21 +95,22 @@ void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& set
     recorder.begin_section("Sample count: " + mesh.name + ", " +
                            std::to_string(mesh.triangle_count()) + " triangles");
     for (const DensityMap& map : inputs.maps) {
-      const auto sampler = make_sampler(mesh, map, settings.threads);
-      std::vector<std::optional<SeriesTime>> last(settings.methods.size());
+      Samplers samplers(mesh, map, settings);
+      std::vector<std::optional<SeriesTime>> last(settings.variants.size());
       for (double target : settings.counts) {
-        for (std::size_t k = 0; k < settings.methods.size(); ++k) {
-          FrameRequest request;
-          request.method = settings.methods[k];
+        for (std::size_t k = 0; k < settings.variants.size(); ++k) {
+          const Variant& variant = settings.variants[k];
+          Sampler& sampler = samplers.of(variant);
+          FrameRequest request = request_for(variant);
           request.target_count = target;
-          CaseResult result = describe_case("sampling", mesh, map, *sampler, request);
+          CaseResult result = describe_case("sampling", mesh, map, sampler, request, variant.engine());
           const std::optional<SeriesTime> estimate =
               last[k] ? std::optional(last[k]->at(target)) : std::nullopt;
           if (estimate && estimate->total_ms() > settings.measure.budget_s * 1e3) {
             result.estimate_ms = estimate->total_ms();
             last[k] = estimate;
           } else {
-            result.measured = measure(*sampler, frame, request, kFirstSeed, settings.measure);
+            result.measured = measure(sampler, frame, request, kFirstSeed, settings.measure);
             last[k] = SeriesTime::of(target, *result.measured);
             if (request.method == Method::trs) result.scan = result.measured->scan_used;
           }
@@ -97,19 +126,29 @@ void run_scan_experiment(const Inputs& inputs, const ExperimentSettings& setting
   recorder.begin_section("Scan order (frames stop after the scan)");
   for (const Mesh& mesh : inputs.meshes) {
     for (const DensityMap& map : inputs.maps) {
-      const auto sampler = make_sampler(mesh, map, settings.threads);
-      for (ScanOrder scan : {ScanOrder::unordered, ScanOrder::ordered}) {
-        FrameRequest request;
-        request.target_count = settings.scan_target;
-        request.scan = scan;
-        request.realize = false;
-        CaseResult result = describe_case("scan", mesh, map, *sampler, request);
-        result.measured = measure(*sampler, frame, request, kFirstSeed, settings.measure);
-        result.scan = result.measured->scan_used;
-        recorder.add(std::move(result));
+      Samplers samplers(mesh, map, settings);
+      for (Sampler* sampler : {samplers.cpu.get(), samplers.vulkan.get()}) {
+        if (!sampler) continue;
+        for (ScanOrder scan : {ScanOrder::unordered, ScanOrder::ordered}) {
+          FrameRequest request;
+          request.target_count = settings.scan_target;
+          request.scan = scan;
+          request.realize = false;
+          request.read_back = false;
+          CaseResult result = describe_case("scan", mesh, map, *sampler, request, sampler->backend());
+          result.measured = measure(*sampler, frame, request, kFirstSeed, settings.measure);
+          result.scan = result.measured->scan_used;
+          recorder.add(std::move(result));
+        }
       }
     }
   }
+}
+
+std::string Variant::engine() const {
+  if (backend != Backend::vulkan) return "cpu";
+  if (method != Method::trs) return "vk";
+  return std::string("vk/") + lightsampler::to_string(counting);
 }
 
 std::vector<std::string> sanity_problems(const std::vector<CaseResult>& results) {
@@ -117,7 +156,7 @@ std::vector<std::string> sanity_problems(const std::vector<CaseResult>& results)
   for (const auto& r : results) {
     if (!r.measured) continue;
     const Measurement& m = *r.measured;
-    const std::string where = r.experiment + " " + r.method + " " + r.mesh + " " +
+    const std::string where = r.experiment + " " + r.engine + " " + r.method + " " + r.mesh + " " +
                               std::to_string(r.triangles) + " " + r.map + " target " +
                               std::to_string(r.target) + ": ";
     // Stochastic rounding gives Var N <= target (one Bernoulli per triangle, each of variance at

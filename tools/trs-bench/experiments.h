@@ -3,10 +3,12 @@
 // plain rejection sampling (Figure 8), and the unordered against the ordered scan across triangle
 // counts (Figure 13).
 
+#include <string>
 #include <vector>
 
 #include "density_maps.h"
 #include "lightsampler/sampler.h"
+#include "lightsampler/vulkan.h"
 #include "measure.h"
 #include "meshes.h"
 #include "report.h"
@@ -18,20 +20,32 @@ struct Inputs {
   std::vector<DensityMap> maps;
 };
 
+/// One way of sampling, compared side by side with the others on the same inputs.
+struct Variant {
+  lightsampler::Backend backend;    ///< cpu or vulkan
+  lightsampler::Method method;
+  lightsampler::Counting counting;  ///< the Vulkan backend's counting path (TRS)
+  /// Backend and counting path as the tables show it: "cpu", "vk", "vk/raster", "vk/compute".
+  std::string engine() const;
+};
+
 struct ExperimentSettings {
   std::vector<double> counts;  ///< target sample counts
-  std::vector<lightsampler::Method> methods;
+  std::vector<Variant> variants;
+  std::string vulkan_device;  ///< empty: the default device
   unsigned threads = 0;  ///< 0: every hardware thread
   MeasureSettings measure;
   double scan_target = 1e6;  ///< target of the scan comparison's frames
 };
 
-/// Every mesh x map x count x method. A case whose frame time, extrapolated from the previous
-/// count of its series, exceeds the budget is skipped and recorded with its estimate.
+/// Every mesh x map x count x variant. A case whose frame time, extrapolated from the previous
+/// count of its series, exceeds the budget is skipped and recorded with its estimate. Vulkan
+/// frames keep their outputs on the device (no readback): the sampler is timed, not the bus.
 void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& settings,
                              lightsampler::Frame& frame, Recorder& recorder);
 
-/// Every mesh x map with the unordered and the ordered scan, frames stopped after the scan.
+/// Every mesh x map x backend with the unordered and the ordered scan, frames stopped after the
+/// scan.
 void run_scan_experiment(const Inputs& inputs, const ExperimentSettings& settings,
                          lightsampler::Frame& frame, Recorder& recorder);
 

@@ -22,6 +22,8 @@ struct CommandLine {
   std::vector<std::string> maps = {"smooth", "sparse", "hifreq"};
   std::uint32_t map_size = 2048;
   std::vector<std::string> methods = {"trs", "rs"};
+  std::vector<std::string> backends = {"cpu"};
+  std::vector<std::string> countings = {"raster", "compute"};
   std::vector<std::string> experiments = {"sampling", "scan"};
   std::string csv;
   ExperimentSettings settings;
@@ -74,26 +76,52 @@ Inputs generate_inputs(const CommandLine& cl) {
   return inputs;
 }
 
-/// The backend as the experiments will see it, from a one-triangle sampler.
-void print_backend(unsigned threads) {
+/// The backends as the experiments will see them, from one-triangle samplers; fails early (with
+/// the reason) when a backend asked for is unavailable.
+void print_backends(const ExperimentSettings& settings) {
   const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, uvs[] = {0, 0, 1, 0, 0, 1}, texel[] = {1};
   const std::uint32_t indices[] = {0, 1, 2};
   const lightsampler::DensityMapView map{texel, 1, 1};
-  const auto sampler =
-      lightsampler::make_cpu_sampler({positions, uvs, indices, {}}, {&map, 1}, {threads});
-  std::cout << "backend " << sampler->backend() << " on " << sampler->device() << ", "
-            << sampler->threads() << " threads\n";
+  std::vector<lightsampler::Backend> shown;
+  for (const Variant& v : settings.variants) {
+    if (std::find(shown.begin(), shown.end(), v.backend) != shown.end()) continue;
+    shown.push_back(v.backend);
+    const auto sampler = lightsampler::make_sampler(
+        {positions, uvs, indices, {}}, {&map, 1},
+        {.backend = v.backend, .cpu = {settings.threads}, .vulkan = {.device = settings.vulkan_device}});
+    std::cout << "backend " << sampler->backend() << " on " << sampler->device();
+    if (sampler->threads() > 0) std::cout << ", " << sampler->threads() << " threads";
+    std::cout << "\n";
+  }
+}
+
+/// Backends x methods, and for Vulkan TRS each counting path.
+std::vector<Variant> make_variants(const CommandLine& cl) {
+  std::vector<Variant> variants;
+  for (const auto& backend_name : cl.backends) {
+    const bool vulkan = backend_name == "vulkan";
+    const auto backend = vulkan ? lightsampler::Backend::vulkan : lightsampler::Backend::cpu;
+    for (const auto& method_name : cl.methods) {
+      const auto method = method_name == "trs" ? lightsampler::Method::trs : lightsampler::Method::rejection;
+      if (!vulkan || method != lightsampler::Method::trs) {
+        variants.push_back({backend, method, lightsampler::Counting::automatic});
+        continue;
+      }
+      for (const auto& counting : cl.countings)
+        variants.push_back({backend, method,
+                            counting == "raster" ? lightsampler::Counting::raster : lightsampler::Counting::compute});
+    }
+  }
+  return variants;
 }
 
 int run(const CommandLine& cl) {
   ExperimentSettings settings = cl.settings;
   // Ascending, because skipping extrapolates from the smaller counts.
   std::sort(settings.counts.begin(), settings.counts.end());
-  for (const auto& method : cl.methods)
-    settings.methods.push_back(method == "trs" ? lightsampler::Method::trs
-                                               : lightsampler::Method::rejection);
+  settings.variants = make_variants(cl);
 
-  print_backend(settings.threads);
+  print_backends(settings);
   std::cout << "warm-up " << settings.measure.warmup << ", repeats " << settings.measure.repeats
             << " (medians), budget " << settings.measure.budget_s << " s per case\n";
   const Inputs inputs = generate_inputs(cl);
@@ -142,6 +170,16 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::IsMember({"trs", "rs"}))
       ->capture_default_str();
+  app.add_option("--backends", cl.backends, "Backends: cpu, vulkan (side by side)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"cpu", "vulkan"}))
+      ->capture_default_str();
+  app.add_option("--counting", cl.countings, "Counting paths of the Vulkan backend: raster, compute")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"raster", "compute"}))
+      ->capture_default_str();
+  app.add_option("--device", cl.settings.vulkan_device,
+                 "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE)");
   app.add_option("--experiments", cl.experiments,
                  "sampling (time vs sample count), scan (scan orders)")
       ->delimiter(',')

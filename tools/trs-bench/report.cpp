@@ -47,7 +47,7 @@ struct Column {
 };
 
 const std::vector<Column> kColumns = {
-    {"mesh", -6},    {"tris", 8},     {"map", -6},     {"method", -6},
+    {"mesh", -6},    {"tris", 8},     {"map", -6},     {"engine", -10}, {"method", -6},
     {"scan", -9},    {"target", 6},   {"samples", 10}, {"accept", 7},
     {"count ms", 9}, {"round ms", 9}, {"scan ms", 9},  {"distr ms", 9},
     {"real ms", 9},  {"total ms", 9}, {"Msmp/s", 8},   {"runs", 4}};
@@ -65,8 +65,8 @@ std::string table_line(const std::vector<std::string>& cells) {
 }
 
 std::vector<std::string> table_cells(const CaseResult& r) {
-  std::vector<std::string> cells = {r.mesh, std::to_string(r.triangles), r.map, r.method,
-                                    r.scan, format_target(r.target)};
+  std::vector<std::string> cells = {r.mesh,   std::to_string(r.triangles), r.map, r.engine,
+                                    r.method, r.scan, format_target(r.target)};
   if (!r.measured) {
     cells.push_back(format("skipped (est. %.1f s per frame)", r.estimate_ms * 1e-3));
     return cells;
@@ -108,7 +108,7 @@ std::string csv_text(const std::vector<CaseResult>& results) {
       "experiment,mesh,triangles,map,map_size,method,scan,target,status,runs,samples,candidates,"
       "acceptance,exhausted";
   for (const auto& name : passes) text += "," + name + "_ms";
-  text += ",total_ms,wall_ms,samples_per_s,threads,backend,device,estimate_ms\n";
+  text += ",total_ms,wall_ms,samples_per_s,threads,backend,engine,device,estimate_ms\n";
   for (const auto& r : results) {
     text += r.experiment + "," + r.mesh + "," + std::to_string(r.triangles) + "," + r.map + "," +
             std::to_string(r.map_size) + "," + r.method + "," + r.scan + "," +
@@ -127,7 +127,8 @@ std::string csv_text(const std::vector<CaseResult>& results) {
     } else {
       text += std::string(5 + passes.size() + 3, ',');
     }
-    text += format(",%u,", r.threads) + csv_quote(r.backend) + ',' + csv_quote(r.device) + ',';
+    text += format(",%u,", r.threads) + csv_quote(r.backend) + ',' + csv_quote(r.engine) + ',' +
+            csv_quote(r.device) + ',';
     text += (r.measured ? "" : format("%.6g", r.estimate_ms)) + '\n';
   }
   return text;
@@ -164,21 +165,21 @@ void print_speedups(std::ostream& out, const std::vector<CaseResult>& results) {
   for (const auto& trs : results) {
     if (trs.experiment != "sampling" || trs.method != "trs" || !trs.measured) continue;
     const auto rs = std::find_if(results.begin(), results.end(), [&](const CaseResult& r) {
-      return r.experiment == "sampling" && r.method == "rs" && r.mesh == trs.mesh &&
+      return r.experiment == "sampling" && r.method == "rs" && r.backend == trs.backend && r.mesh == trs.mesh &&
              r.triangles == trs.triangles && r.map == trs.map && r.target == trs.target;
     });
     if (rs == results.end()) continue;
     if (!header) {
       out << "\nTRS speed-up over plain rejection sampling (total frame time; ~ marks an "
              "extrapolated rejection time)\n"
-          << format("%-6s %8s %-6s %6s %10s %12s %9s", "mesh", "tris", "map", "target", "trs ms",
-                    "rs ms", "speed-up")
+          << format("%-6s %8s %-6s %-10s %6s %10s %12s %9s", "mesh", "tris", "map", "engine", "target",
+                    "trs ms", "rs ms", "speed-up")
           << "\n";
       header = true;
     }
     const char* mark = rs->measured ? "" : "~";
-    out << format("%-6s %8llu %-6s %6s %10s %12s %9s", trs.mesh.c_str(),
-                  static_cast<unsigned long long>(trs.triangles), trs.map.c_str(),
+    out << format("%-6s %8llu %-6s %-10s %6s %10s %12s %9s", trs.mesh.c_str(),
+                  static_cast<unsigned long long>(trs.triangles), trs.map.c_str(), trs.engine.c_str(),
                   format_target(trs.target).c_str(), format_ms(time_ms(trs)).c_str(),
                   format("%s%s", mark, format_ms(time_ms(*rs)).c_str()).c_str(),
                   format("%s%.3gx", mark, time_ms(*rs) / time_ms(trs)).c_str())

@@ -24,6 +24,7 @@ struct CaseResult {
   std::string scan;    ///< the scan order used; "-" for plain rejection sampling
   double target = 0;
   std::string backend;
+  std::string engine;  ///< backend and counting path, e.g. "cpu", "vk/raster"
   std::string device;
   unsigned threads = 0;
   std::optional<Measurement> measured;  ///< empty: skipped
