@@ -82,11 +82,19 @@ vec2 triangle_map(float u0, float u1) {
   return vec2(t1, 1.0 - (u0 < u1 ? u1 : u0));
 }
 
+// The texel-space point at barycentrics (b1, b2). precise: no fused multiply-add, so the texel
+// it falls in is the one the CPU backend reads, bit for bit.
+vec2 texel_point(GpuTriangle t, vec2 b) {
+  precise float x = t.origin_x + b.x * t.edge1_x + b.y * t.edge2_x;
+  precise float y = t.origin_y + b.x * t.edge1_y + b.y * t.edge2_y;
+  return vec2(x, y);
+}
+
 // Density at barycentrics (b1, b2) of a triangle, as the realization pass reads it.
 float triangle_density(GpuTriangle t, Maps maps, uint64_t texels, vec2 b) {
   if (t.map == kNoMap) return 0.0;
-  return point_density(maps.v[t.map], texels, t.origin_x + b.x * t.edge1_x + b.y * t.edge2_x,
-                       t.origin_y + b.x * t.edge1_y + b.y * t.edge2_y);
+  vec2 p = texel_point(t, b);
+  return point_density(maps.v[t.map], texels, p.x, p.y);
 }
 
 bool uv_degenerate(GpuTriangle t) {

@@ -47,30 +47,35 @@ void accumulate(uint64_t expected, uint64_t max_density, uint tri, float contrib
   }
 }
 
-// Whether the cell [lo, hi] lies wholly outside one of the triangle's edges: then it does not
-// overlap, exactly. Without this test the float closed form can leave rounding noise for cells
-// that only pass near the triangle, and such a cell would raise D_T^max (a valid bound, but a
-// looser one than the CPU backend's).
-bool separated(TexelTriangle tt, vec2 lo, vec2 hi) {
-  vec2 v[3] = vec2[3](tt.a, tt.b, tt.c);
-  float orientation = sign((tt.b.x - tt.a.x) * (tt.c.y - tt.a.y) - (tt.b.y - tt.a.y) * (tt.c.x - tt.a.x));
+// Where the cell [lo, hi] lies against the triangle: -1 wholly outside one edge (no overlap),
+// +1 wholly inside every edge (full overlap), 0 across an edge (the closed form decides). Edge
+// functions in double, like the overlap itself.
+int classify(TexelTriangle tt, dvec2 lo, dvec2 hi) {
+  dvec2 v[3] = dvec2[3](dvec2(tt.a), dvec2(tt.b), dvec2(tt.c));
+  double orientation = sign((v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x));
+  bool inside = true;
   for (int i = 0; i < 3; ++i) {
-    vec2 e = v[(i + 1) % 3] - v[i];
-    vec2 inward = orientation * vec2(-e.y, e.x);
-    vec2 corner = vec2(inward.x >= 0.0 ? hi.x : lo.x, inward.y >= 0.0 ? hi.y : lo.y);  // most inside
-    if (dot(inward, corner - v[i]) <= 0.0) return true;
+    dvec2 e = v[(i + 1) % 3] - v[i];
+    dvec2 inward = orientation * dvec2(-e.y, e.x);
+    dvec2 most_in = dvec2(inward.x >= 0.0lf ? hi.x : lo.x, inward.y >= 0.0lf ? hi.y : lo.y);
+    dvec2 most_out = dvec2(inward.x >= 0.0lf ? lo.x : hi.x, inward.y >= 0.0lf ? lo.y : hi.y);
+    if (dot(inward, most_in - v[i]) <= 0.0lf) return -1;
+    inside = inside && dot(inward, most_out - v[i]) >= 0.0lf;
   }
-  return false;
+  return inside ? 1 : 0;
 }
 
 // Contribution of lattice cell (ix, iy) to a triangle: density times overlap, scaled from
 // texel area to world area. Returns the density read, zero where the overlap is empty.
 float cell_contribution(GpuTriangle t, TexelTriangle tt, GpuMap map, uint64_t texels, int64_t ix,
                         int64_t iy, out float density) {
-  vec2 lo = vec2(float(ix), float(iy));
-  float overlap = separated(tt, lo, lo + vec2(1.0)) ? 0.0 : rect_triangle_overlap(tt.a, tt.b, tt.c, lo, lo + vec2(1.0));
-  density = overlap > 0.0 ? cell_density(map, texels, ix, iy) : 0.0;
-  return density * overlap * (t.area / tt.uv_area);
+  dvec2 lo = dvec2(double(ix), double(iy)), hi = lo + dvec2(1.0lf);
+  int where = classify(tt, lo, hi);
+  double overlap = where < 0 ? 0.0lf
+                 : where > 0 ? 1.0lf
+                             : rect_triangle_overlap(dvec2(tt.a), dvec2(tt.b), dvec2(tt.c), lo, hi);
+  density = overlap > 0.0lf ? cell_density(map, texels, ix, iy) : 0.0;
+  return float(double(density) * overlap * double(t.area / tt.uv_area));
 }
 
 #endif

@@ -4,7 +4,6 @@
 // inverse permutation, then candidates from Heitz's map accepted against D_T^max. Random
 // numbers keyed by (triangle, rank within the triangle, try), as in the CPU backend.
 #include "common.glsl"
-#include "grid.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
 layout(push_constant) uniform Push { RealizePush p; };
@@ -18,37 +17,37 @@ uint processing_index(uint64_t sample_index) {
   return lo;
 }
 
+// One sample per invocation, no grid-stride loop around the rejection loop: Mesa's llvmpipe
+// (lavapipe) ends loops after about 65535 iterations with a counter that nested loops share, so
+// a long rejection loop would cut short the loop around it. Large counts take several dispatches
+// (`first`); on lavapipe the host also keeps max_tries well under that limit (device_max_tries).
 void main() {
   Totals totals = Totals(p.totals);
-  uint64_t n = totals.t.sample_count;
-  uvec2 key = uvec2(p.key0, p.key1);
-  Triangles triangles = Triangles(p.triangles);
-  Maps maps = Maps(p.maps);
+  uint64_t i = p.first + uint64_t(gl_GlobalInvocationID.x);
   uint64_t tries = 0ul, gave_up = 0ul;
-  for (uint64_t i = thread_index(); i < n; i += thread_count()) {
+  if (i < totals.t.sample_count) {
     uint slot = processing_index(i);
     uint tri = Uints(p.inverse).v[slot];
     uint64_t rank = i - (slot > 0u ? uint64_at(p.cdf, slot - 1u).v[0] : 0ul);
-    GpuTriangle t = triangles.v[tri];
-    GpuMap map = maps.v[t.map];
+    GpuTriangle t = Triangles(p.triangles).v[tri];
+    GpuMap map = Maps(p.maps).v[t.map];
     float bound = uintBitsToFloat(Uints(p.max_density).v[tri]);
+    uvec2 key = uvec2(p.key0, p.key1);
     vec2 b = vec2(0.0);
     bool accepted = false;
     uint attempt = 0u;
     // A while loop with its flag set before it: a do-while left `accepted` wrong after the loop
-    // on lavapipe (the exhausted tally went astray while the samples stayed right).
+    // on lavapipe.
     while (!accepted && attempt < p.max_tries) {
       uvec4 u = philox4x32(uvec4(tri, uint(rank), uint(rank >> 32), attempt), key);
       b = triangle_map(uniform_float(u.x), uniform_float(u.y));
-      // precise: no fused multiply-add, so the texel read is the CPU backend's, bit for bit.
-      precise float x = t.origin_x + b.x * t.edge1_x + b.y * t.edge2_x;
-      precise float y = t.origin_y + b.x * t.edge1_y + b.y * t.edge2_y;
+      vec2 point = texel_point(t, b);
       ++attempt;
-      accepted = uniform_float(u.z) * bound < point_density(map, p.texels, x, y);
+      accepted = uniform_float(u.z) * bound < point_density(map, p.texels, point.x, point.y);
     }
     Samples(p.samples + i * 12ul).v[0] = GpuSample(tri, b.x, b.y);
-    tries += attempt;
-    gave_up += accepted ? 0ul : 1ul;
+    tries = attempt;
+    gave_up = accepted ? 0ul : 1ul;
   }
   tries = subgroupAdd(tries);
   gave_up = subgroupAdd(gave_up);

@@ -3,7 +3,6 @@
 // Plain rejection sampling (Algorithm 1): triangle by area (binary search in the area CDF),
 // uniform point, accepted against the global bound. Same stream as the CPU backend.
 #include "common.glsl"
-#include "grid.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
 layout(push_constant) uniform Push { RejectionPush p; };
@@ -18,21 +17,21 @@ uint pick_triangle(double target) {
   return lo;
 }
 
+// One sample per invocation, as in realize.comp (lavapipe's shared loop limiter).
 void main() {
   Totals totals = Totals(p.totals);
-  float bound = uintBitsToFloat(totals.t.max_density_bits);
-  double total_area = Doubles(p.area_cdf).v[p.triangle_count - 1u];
-  uvec2 key = uvec2(p.key0, p.key1);
-  Triangles triangles = Triangles(p.triangles);
-  Maps maps = Maps(p.maps);
+  uint64_t i = p.first + uint64_t(gl_GlobalInvocationID.x);
   uint64_t tries = 0ul, gave_up = 0ul;
-  for (uint64_t i = thread_index(); i < p.sample_count; i += thread_count()) {
+  if (i < p.sample_count) {
+    float bound = uintBitsToFloat(totals.t.max_density_bits);
+    double total_area = Doubles(p.area_cdf).v[p.triangle_count - 1u];
+    uvec2 key = uvec2(p.key0, p.key1);
+    Triangles triangles = Triangles(p.triangles);
+    Maps maps = Maps(p.maps);
     uint tri = 0u;
     vec2 b = vec2(0.0);
     bool accepted = false;
     uint attempt = 0u;
-    // A while loop with its flag set before it: a do-while left `accepted` wrong after the loop
-    // on lavapipe (the exhausted tally went astray while the samples stayed right).
     while (!accepted && attempt < p.max_tries) {
       uvec4 u = philox4x32(uvec4(uint(i), uint(i >> 32), attempt, 0u), key);
       tri = pick_triangle(double(u.x) * (1.0 / 4294967296.0) * total_area);
@@ -41,8 +40,8 @@ void main() {
       accepted = uniform_float(u.w) * bound < triangle_density(triangles.v[tri], maps, p.texels, b);
     }
     Samples(p.samples + i * 12ul).v[0] = GpuSample(tri, b.x, b.y);
-    tries += attempt;
-    gave_up += accepted ? 0ul : 1ul;
+    tries = attempt;
+    gave_up = accepted ? 0ul : 1ul;
   }
   tries = subgroupAdd(tries);
   gave_up = subgroupAdd(gave_up);

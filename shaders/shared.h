@@ -115,6 +115,7 @@ struct RealizePush {
   uint64_t inverse;
   uint64_t samples;
   uint64_t totals;
+  uint64_t first;     // sample of this dispatch's first invocation
   uint key0, key1;
   uint triangle_count;
   uint max_tries;
@@ -128,6 +129,7 @@ struct RejectionPush {
   uint64_t samples;
   uint64_t totals;
   uint64_t sample_count;
+  uint64_t first;     // realization: sample of this dispatch's first invocation
   uint key0, key1;
   uint triangle_count;
   uint max_tries;

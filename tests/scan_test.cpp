@@ -57,7 +57,7 @@ TEST(Scan, UnorderedIsAPermutationOfTheOrderedScan) {
       ASSERT_TRUE(cpu::unordered_scan_fits(n, total));
       Buffer<std::uint64_t> cdf;
       Buffer<std::uint32_t> inverse;
-      arena.execute([&] { cpu::unordered_scan(counts, total, block, cdf, inverse); });
+      arena.execute([&] { cpu::unordered_scan(counts, block, cdf, inverse); });
       expect_valid_scan(counts, cdf, inverse);
     }
   }
@@ -82,7 +82,7 @@ TEST(Scan, OrderedIsTheInclusivePrefixSum) {
 TEST(Scan, EmptyInput) {
   Buffer<std::uint64_t> cdf;
   Buffer<std::uint32_t> inverse;
-  cpu::unordered_scan({}, 0, 256, cdf, inverse);
+  cpu::unordered_scan({}, 256, cdf, inverse);
   EXPECT_TRUE(cdf.empty());
   EXPECT_TRUE(inverse.empty());
 }

@@ -146,8 +146,7 @@ class CpuSampler final : public Sampler {
     // Automatic: ordered, which is faster on the CPU than contending for one atomic.
     frame.scan_used = request.scan == ScanOrder::unordered ? ScanOrder::unordered : ScanOrder::ordered;
     if (frame.scan_used == ScanOrder::unordered)
-      cpu::unordered_scan(frame.counts.span(), frame.sample_count, kScanBlock, frame.cdf,
-                          frame.inverse_permutation);
+      cpu::unordered_scan(frame.counts.span(), kScanBlock, frame.cdf, frame.inverse_permutation);
     else
       cpu::ordered_scan(frame.counts.span(), frame.cdf, frame.inverse_permutation);
     frame.passes.push_back({"scan", pass.lap_ms()});

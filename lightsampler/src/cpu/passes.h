@@ -48,8 +48,8 @@ bool unordered_scan_fits(std::uint64_t elements, std::uint64_t total);
 /// permutation. Each task reserves a block of up to `block` consecutive elements with one packed
 /// atomic add (the CPU form of the subgroup reduction of Section 5); block = 1 is Algorithm 3
 /// verbatim. Requires unordered_scan_fits(counts.size(), total).
-void unordered_scan(std::span<const std::uint64_t> counts, std::uint64_t total, std::size_t block,
-                    Buffer<std::uint64_t>& cdf, Buffer<std::uint32_t>& inverse_permutation);
+void unordered_scan(std::span<const std::uint64_t> counts, std::size_t block, Buffer<std::uint64_t>& cdf,
+                    Buffer<std::uint32_t>& inverse_permutation);
 
 /// Ordered inclusive prefix sum; the inverse permutation is the identity.
 void ordered_scan(std::span<const std::uint64_t> counts, Buffer<std::uint64_t>& cdf,

@@ -50,7 +50,9 @@ RealizationResult rejection_sample(std::span<const TexelTriangle> triangles,
   const std::size_t last = area_cdf.size() - 1;
   std::atomic<std::uint64_t> candidates{0}, exhausted{0};
   tbb::parallel_for(
-      tbb::blocked_range<std::uint64_t>(0, sample_count, 1 << 14),
+      // Small blocks: a sample may try hundreds of candidates, and small counts must still
+      // spread over every thread.
+      tbb::blocked_range<std::uint64_t>(0, sample_count, 1 << 10),
       [&](const tbb::blocked_range<std::uint64_t>& r) {
         std::uint64_t tries = 0, gave_up = 0;
         for (std::uint64_t i = r.begin(); i != r.end(); ++i) {

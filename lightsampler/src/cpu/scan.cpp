@@ -16,9 +16,8 @@ bool unordered_scan_fits(std::uint64_t elements, std::uint64_t total) {
   return total < (std::uint64_t(1) << (64 - index_bits)) || index_bits == 0;
 }
 
-void unordered_scan(std::span<const std::uint64_t> counts, std::uint64_t total, std::size_t block,
-                    Buffer<std::uint64_t>& cdf, Buffer<std::uint32_t>& inverse_permutation) {
-  (void)total;  // only bounds the packing; see unordered_scan_fits
+void unordered_scan(std::span<const std::uint64_t> counts, std::size_t block, Buffer<std::uint64_t>& cdf,
+                    Buffer<std::uint32_t>& inverse_permutation) {
   const std::size_t n = counts.size();
   cdf.resize(n);
   inverse_permutation.resize(n);

@@ -16,8 +16,9 @@ static_assert(sizeof(CountPush) == 72 && offsetof(CountPush, triangle_count) == 
 static_assert(sizeof(RasterPush) == 72 && offsetof(RasterPush, origin_x) == 48 && offsetof(RasterPush, map) == 64);
 static_assert(sizeof(RoundPush) == 48 && offsetof(RoundPush, target) == 24 && offsetof(RoundPush, key0) == 32);
 static_assert(sizeof(ScanPush) == 56 && offsetof(ScanPush, sum_bits) == 48);
-static_assert(sizeof(RealizePush) == 80 && offsetof(RealizePush, key0) == 64);
-static_assert(sizeof(RejectionPush) == 80 && offsetof(RejectionPush, key0) == 56 && offsetof(RejectionPush, map) == 76);
+static_assert(sizeof(RealizePush) == 88 && offsetof(RealizePush, first) == 64 && offsetof(RealizePush, key0) == 72);
+static_assert(sizeof(RejectionPush) == 88 && offsetof(RejectionPush, first) == 56 &&
+              offsetof(RejectionPush, key0) == 64 && offsetof(RejectionPush, map) == 84);
 // Vulkan guarantees 128 bytes of push constants.
 static_assert(sizeof(RealizePush) <= 128 && sizeof(RejectionPush) <= 128);
 

@@ -28,6 +28,17 @@ using vk::workgroups_for;
 // Viewport tile of the raster counting path, in texels (within every device's limits).
 constexpr std::int64_t kTile = 4096;
 
+/// Tries a realization invocation may make on this device. Mesa's llvmpipe (lavapipe) ends shader
+/// loops after about 65535 iterations (a counter shared by the loops of a shader), and then
+/// lanes of the same SIMD group come out wrong. Measured: the GPU's samples and exhausted count
+/// equal the CPU backend's up to 60000 tries, not at 65534. There a sample stops at 2^15 tries
+/// and, if still rejected, is counted in Frame::exhausted like any sample reaching max_tries.
+std::uint32_t device_max_tries(const std::string& device, std::uint32_t requested) {
+  constexpr std::uint32_t kLlvmpipeMaxTries = 1u << 15;
+  if (device.find("llvmpipe") != std::string::npos) return std::min(requested, kLlvmpipeMaxTries);
+  return requested;
+}
+
 /// Per-triangle and per-frame device buffers, grown on demand and kept between frames.
 struct FrameBuffers {
   Buffer expected, max_density, footprint, cell_cdf, counts, cdf, inverse, identity, totals, samples;
@@ -155,6 +166,21 @@ class VulkanSampler final : public Sampler {
     return *raster_;
   }
 
+  /// One invocation per sample (the realization passes loop over tries, not over samples), in
+  /// as many dispatches as the device's workgroup-count limit requires.
+  template <class Push>
+  void dispatch_per_sample(Commands& d, const vk::ComputePipeline& pipeline, Push push, std::uint64_t n) {
+    const std::uint64_t per_dispatch =
+        std::uint64_t(context_->capabilities().max_workgroup_count_x) * gpu::kWorkgroupSize;
+    for (std::uint64_t first = 0; first < n; first += per_dispatch) {
+      push.first = first;
+      const std::uint64_t invocations = std::min(per_dispatch, n - first);
+      d.dispatch(pipeline, &push, sizeof push,
+                 std::uint32_t((invocations + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize));
+    }
+    d.barrier();
+  }
+
   void ensure_samples(std::uint64_t n) {
     const VkDeviceSize bytes = std::max<std::uint64_t>(n, 1) * sizeof(gpu::GpuSample);
     if (!buffers_.samples || buffers_.samples.size() < bytes) {
@@ -204,10 +230,9 @@ class VulkanSampler final : public Sampler {
       const PhiloxKey key = stream_key(request.seed, Stream::realization);
       const gpu::RealizePush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
                                   buffers_.max_density.address(), buffers_.cdf.address(), inverse.address(),
-                                  buffers_.samples.address(), buffers_.totals.address(), key[0], key[1],
-                                  n_tri, request.max_tries};
-      d.dispatch(pipelines_.realize, &push, sizeof push, workgroups_for(frame.sample_count));
-      d.barrier();
+                                  buffers_.samples.address(), buffers_.totals.address(), 0, key[0], key[1],
+                                  n_tri, device_max_tries(context_->device_name(), request.max_tries)};
+      dispatch_per_sample(d, pipelines_.realize, push, frame.sample_count);
       d.timestamp("realization");
     }
     finish(d, request, frame, {.counted = true, .inverse = &inverse});
@@ -222,7 +247,7 @@ class VulkanSampler final : public Sampler {
     for (std::size_t m = 0; m < scene_.maps().size(); ++m) {
       const std::uint32_t texels = std::uint32_t(scene_.maps()[m].texels.size());
       const gpu::RejectionPush push{0, scene_.map_records(), scene_.texels(), 0, 0, buffers_.totals.address(),
-                                    0, 0, 0, n_tri, 0, texels, std::uint32_t(m)};
+                                    0, 0, 0, 0, n_tri, 0, texels, std::uint32_t(m)};
       c.dispatch(pipelines_.rejection_bound, &push, sizeof push, workgroups_for(texels));
     }
     c.barrier();
@@ -248,9 +273,9 @@ class VulkanSampler final : public Sampler {
       const PhiloxKey key = stream_key(request.seed, Stream::rejection);
       const gpu::RejectionPush push{scene_.triangles(), scene_.map_records(), scene_.texels(), scene_.area_cdf(),
                                     buffers_.samples.address(), buffers_.totals.address(), frame.sample_count,
-                                    key[0], key[1], n_tri, request.max_tries, 0, 0};
-      d.dispatch(pipelines_.rejection, &push, sizeof push, workgroups_for(frame.sample_count));
-      d.barrier();
+                                    0, key[0], key[1], n_tri,
+                                    device_max_tries(context_->device_name(), request.max_tries), 0, 0};
+      dispatch_per_sample(d, pipelines_.rejection, push, frame.sample_count);
       d.timestamp("realization");
     }
     finish(d, request, frame, {.counted = !request.target_count});
