@@ -65,26 +65,28 @@ CaseResult describe_case(const char* experiment, const Mesh& mesh, const Density
   return r;
 }
 
-/// The last frame of one (mesh, map, method) series, to extrapolate the next count from: the
-/// realization pass scales with the sample count, the other passes do not (they scale with the
-/// mesh and the maps), so one point suffices whatever the step between counts.
+/// The frames of one (mesh, map, variant) series so far, to extrapolate the next count from.
+/// A frame costs a fixed part (counting: mesh and maps) plus a part proportional to the sample
+/// count: an affine fit through the last two points, or with one point the whole frame scaled
+/// (an over-estimate). Frame totals only: per-pass times are not trusted (lavapipe misplaces
+/// them).
 struct SeriesTime {
-  double target;
-  double fixed_ms;
-  double realization_ms;
+  struct Point {
+    double target, total_ms;
+  };
+  std::vector<Point> points;
 
-  static SeriesTime of(double target, const Measurement& m) {
-    double realization_ms = 0;
-    for (const auto& pass : m.pass_medians)
-      if (pass.name == "realization") realization_ms = pass.ms;
-    return {target, std::max(m.total_ms - realization_ms, 0.0), realization_ms};
-  }
+  void add(double target, double total_ms) { points.push_back({target, total_ms}); }
 
-  /// The estimate at another count, as a series point itself.
-  SeriesTime at(double next_target) const {
-    return {next_target, fixed_ms, realization_ms * next_target / target};
+  std::optional<double> estimate_ms(double target) const {
+    if (points.empty()) return std::nullopt;
+    const Point& last = points.back();
+    if (points.size() == 1 || last.target == points[points.size() - 2].target)
+      return last.total_ms * target / last.target;
+    const Point& before = points[points.size() - 2];
+    const double per_sample = std::max((last.total_ms - before.total_ms) / (last.target - before.target), 0.0);
+    return last.total_ms + per_sample * (target - last.target);
   }
-  double total_ms() const { return fixed_ms + realization_ms; }
 };
 
 }  // namespace
@@ -96,7 +98,7 @@ void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& set
                            std::to_string(mesh.triangle_count()) + " triangles");
     for (const DensityMap& map : inputs.maps) {
       Samplers samplers(mesh, map, settings);
-      std::vector<std::optional<SeriesTime>> last(settings.variants.size());
+      std::vector<SeriesTime> series(settings.variants.size());
       for (double target : settings.counts) {
         for (std::size_t k = 0; k < settings.variants.size(); ++k) {
           const Variant& variant = settings.variants[k];
@@ -104,14 +106,13 @@ void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& set
           FrameRequest request = request_for(variant);
           request.target_count = target;
           CaseResult result = describe_case("sampling", mesh, map, sampler, request, variant.engine());
-          const std::optional<SeriesTime> estimate =
-              last[k] ? std::optional(last[k]->at(target)) : std::nullopt;
-          if (estimate && estimate->total_ms() > settings.measure.budget_s * 1e3) {
-            result.estimate_ms = estimate->total_ms();
-            last[k] = estimate;
+          const std::optional<double> estimate = series[k].estimate_ms(target);
+          if (estimate && *estimate > settings.measure.budget_s * 1e3) {
+            result.estimate_ms = *estimate;
+            series[k].add(target, *estimate);
           } else {
             result.measured = measure(sampler, frame, request, kFirstSeed, settings.measure);
-            last[k] = SeriesTime::of(target, *result.measured);
+            series[k].add(target, result.measured->total_ms);
             if (request.method == Method::trs) result.scan = result.measured->scan_used;
           }
           recorder.add(std::move(result));
