@@ -8,3 +8,4 @@
 #include "lightsampler/sample.h"
 #include "lightsampler/sampler.h"
 #include "lightsampler/triangle_map.h"
+#include "lightsampler/vulkan.h"
