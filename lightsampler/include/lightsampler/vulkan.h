@@ -15,7 +15,8 @@ struct VulkanOptions {
   /// Device by index or case-insensitive name substring; empty: LIGHTSAMPLER_VULKAN_DEVICE,
   /// else the best device (discrete GPU first).
   std::string device;
-  /// Khronos validation layer (also LIGHTSAMPLER_VULKAN_VALIDATION=1), when installed.
+  /// Khronos validation layer, when installed; also on with LIGHTSAMPLER_VULKAN_VALIDATION=1 and
+  /// in Debug builds of the library.
   bool validation = false;
 };
 

@@ -12,6 +12,15 @@
 namespace lightsampler::vk {
 
 namespace {
+// Debug builds of the library run with the validation layer (when installed), as tests do.
+#ifdef NDEBUG
+constexpr bool kDebugBuild = false;
+#else
+constexpr bool kDebugBuild = true;
+#endif
+}  // namespace
+
+namespace {
 
 // Transfers larger than this go through the staging buffer in pieces, so it stays small.
 constexpr VkDeviceSize kStagingBytes = VkDeviceSize(64) << 20;
@@ -191,7 +200,7 @@ const Buffer& Context::State::staging_buffer(VkDeviceSize bytes) {
 
 std::unique_ptr<Context> Context::create(const ContextOptions& options) {
   std::unique_ptr<Context> context(new Context);
-  context->state_ = std::make_unique<State>(options.validation ||
+  context->state_ = std::make_unique<State>(options.validation || kDebugBuild ||
                                             environment("LIGHTSAMPLER_VULKAN_VALIDATION") == "1");
   State& s = *context->state_;
   const auto devices = survey_devices(s.instance);
