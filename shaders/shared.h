@@ -19,6 +19,8 @@ LS_CONST uint kWorkgroupSize = 256;
 // dispatch exceeds the 65535-workgroup limit whatever the element count.
 LS_CONST uint kMaxWorkgroups = 8192;
 LS_CONST uint kNoMap = 0xffffffffu;
+// Candidate cells per invocation of the compute counting path.
+LS_CONST uint kCellsPerRun = 16;
 LS_CONST uint kAddressWrap = 0u;
 LS_CONST uint kAddressClamp = 1u;
 

@@ -72,7 +72,7 @@ void expect_counts_agree(const Mesh& mesh, const std::vector<Map>& maps) {
   double largest = 0;
   for (double e : reference.expected_counts) largest = std::max(largest, e);
   auto sampler = make_vulkan_sampler(mesh.view(), views(maps), {.validation = true});
-  for (Counting path : {Counting::compute, Counting::raster}) {
+  for (Counting path : {Counting::compute, Counting::raster, Counting::per_triangle}) {
     SCOPED_TRACE(to_string(path));
     const Frame f = generate(*sampler, {.counting = path, .realize = false});
     EXPECT_EQ(f.counting_used, to_string(path));

@@ -60,6 +60,7 @@ const char* to_string(Counting counting) {
     case Counting::automatic: return "auto";
     case Counting::raster: return "raster";
     case Counting::compute: return "compute";
+    case Counting::per_triangle: return "per-triangle";
   }
   return "?";
 }

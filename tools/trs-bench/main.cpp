@@ -109,7 +109,9 @@ std::vector<Variant> make_variants(const CommandLine& cl) {
       }
       for (const auto& counting : cl.countings)
         variants.push_back({backend, method,
-                            counting == "raster" ? lightsampler::Counting::raster : lightsampler::Counting::compute});
+                            counting == "raster"    ? lightsampler::Counting::raster
+                            : counting == "compute" ? lightsampler::Counting::compute
+                                                    : lightsampler::Counting::per_triangle});
     }
   }
   return variants;
@@ -174,9 +176,11 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::IsMember({"cpu", "vulkan"}))
       ->capture_default_str();
-  app.add_option("--counting", cl.countings, "Counting paths of the Vulkan backend: raster, compute")
+  app.add_option("--counting", cl.countings,
+                 "Counting paths of the Vulkan backend: raster, compute, per-triangle (the paper's "
+                 "naive ablation)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"raster", "compute"}))
+      ->check(CLI::IsMember({"raster", "compute", "per-triangle"}))
       ->capture_default_str();
   app.add_option("--device", cl.settings.vulkan_device,
                  "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE)");

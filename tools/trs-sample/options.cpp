@@ -25,7 +25,8 @@ const std::map<std::string, lightsampler::Backend> kBackends = {
 const std::map<std::string, lightsampler::Counting> kCountings = {
     {"auto", lightsampler::Counting::automatic},
     {"raster", lightsampler::Counting::raster},
-    {"compute", lightsampler::Counting::compute}};
+    {"compute", lightsampler::Counting::compute},
+    {"per-triangle", lightsampler::Counting::per_triangle}};
 const std::map<std::string, lightsampler::ScanOrder> kScans = {
     {"auto", lightsampler::ScanOrder::automatic},
     {"unordered", lightsampler::ScanOrder::unordered},
@@ -86,7 +87,8 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
                  "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE); implies Vulkan "
                  "with --backend auto");
   app.add_option("--counting", counting,
-                 "Vulkan counting pass: raster (the paper's UV rasterization) or compute")
+                 "Vulkan counting pass: raster (the paper's UV rasterization), compute (balanced), "
+                 "or per-triangle (the paper's naive ablation)")
       ->check(CLI::IsMember(names(kCountings)))
       ->capture_default_str();
   app.add_option("--scan", scan, "cumulative sum of the per-triangle counts")

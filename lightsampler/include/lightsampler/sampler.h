@@ -28,8 +28,10 @@ enum class ScanOrder { automatic, unordered, ordered };
 /// How the Vulkan backend enumerates (triangle, texel) pairs in the counting pass: `raster`
 /// rasterizes the mesh in UV space (the paper's method, conservative or dilated); `compute` runs
 /// one thread per candidate cell after a prefix sum over the triangles' footprints, for GPUs
-/// whose graphics units are a small part of the chip. The CPU backend has one path of its own.
-enum class Counting { automatic, raster, compute };
+/// whose graphics units are a small part of the chip; `per_triangle` is the paper's naive
+/// one-thread-per-triangle ablation, kept as the baseline `compute` is measured against. The
+/// CPU backend has one path of its own.
+enum class Counting { automatic, raster, compute, per_triangle };
 
 struct FrameRequest {
   std::uint64_t seed = 0;

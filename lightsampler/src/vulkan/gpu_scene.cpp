@@ -15,20 +15,21 @@ cpu::DensityMap copy_map(const DensityMapView& view) {
   return {{view.texels.begin(), view.texels.end()}, view.width, view.height, view.addressing, view.scale};
 }
 
-/// Grows `box` by the lattice cells of the triangle's bounding box (float corners, as the
-/// shaders compute them).
-void extend(LatticeBox& box, const cpu::TexelTriangle& t) {
+/// The lattice cells of the triangle's bounding box (float corners, as the shaders compute them).
+LatticeBox bounding_cells(const cpu::TexelTriangle& t) {
   const float xs[3] = {t.origin[0], t.origin[0] + t.edge1[0], t.origin[0] + t.edge2[0]};
   const float ys[3] = {t.origin[1], t.origin[1] + t.edge1[1], t.origin[1] + t.edge2[1]};
-  const auto x0 = cpu::floor_to_int(std::min({xs[0], xs[1], xs[2]}));
-  const auto x1 = cpu::floor_to_int(std::max({xs[0], xs[1], xs[2]}));
-  const auto y0 = cpu::floor_to_int(std::min({ys[0], ys[1], ys[2]}));
-  const auto y1 = cpu::floor_to_int(std::max({ys[0], ys[1], ys[2]}));
+  return {cpu::floor_to_int(std::min({xs[0], xs[1], xs[2]})), cpu::floor_to_int(std::min({ys[0], ys[1], ys[2]})),
+          cpu::floor_to_int(std::max({xs[0], xs[1], xs[2]})), cpu::floor_to_int(std::max({ys[0], ys[1], ys[2]}))};
+}
+
+void extend(LatticeBox& box, const LatticeBox& cells) {
   if (box.empty()) {
-    box = {x0, y0, x1, y1};
+    box = cells;
     return;
   }
-  box = {std::min(box.x0, x0), std::min(box.y0, y0), std::max(box.x1, x1), std::max(box.y1, y1)};
+  box = {std::min(box.x0, cells.x0), std::min(box.y0, cells.y0), std::max(box.x1, cells.x1),
+         std::max(box.y1, cells.y1)};
 }
 
 }  // namespace
@@ -85,12 +86,16 @@ void GpuScene::upload_maps() {
 void GpuScene::upload_triangles() {
   texel_triangles_.resize(records_.size());
   map_boxes_.assign(maps_.size(), {0, 0, -1, -1});
+  candidate_cells_ = 0;
   std::vector<gpu::GpuTriangle> gpu(records_.size());
   for (std::size_t t = 0; t < records_.size(); ++t) {
     const cpu::TexelTriangle tt = texel_triangles_[t] = cpu::make_texel_triangle(records_[t], maps_);
     gpu[t] = {tt.origin[0], tt.origin[1], tt.edge1[0], tt.edge1[1], tt.edge2[0], tt.edge2[1],
               float(records_[t].area), tt.map};
-    if (tt.map != kNoMap) extend(map_boxes_[tt.map], tt);
+    if (tt.map == kNoMap) continue;
+    const LatticeBox cells = bounding_cells(tt);
+    extend(map_boxes_[tt.map], cells);
+    candidate_cells_ += std::uint64_t(cells.x1 - cells.x0 + 1) * std::uint64_t(cells.y1 - cells.y0 + 1);
   }
   if (!triangles_) triangles_ = context_.create_buffer(gpu.size() * sizeof(gpu::GpuTriangle));
   if (!gpu.empty()) context_.upload(triangles_, 0, gpu.data(), gpu.size() * sizeof(gpu::GpuTriangle));

@@ -28,6 +28,9 @@ class GpuScene {
   std::span<const cpu::DensityMap> maps() const { return maps_; }
   std::span<const cpu::TexelTriangle> texel_triangles() const { return texel_triangles_; }
   std::span<const LatticeBox> map_boxes() const { return map_boxes_; }
+  /// An upper bound of the counting pass's candidate cells (every mapped triangle's bounding
+  /// box), to size its dispatch: it changes only with the geometry and the maps' sizes.
+  std::uint64_t candidate_cells() const { return candidate_cells_; }
 
   VkDeviceAddress triangles() const { return triangles_.address(); }
   VkDeviceAddress map_records() const { return map_records_.address(); }
@@ -43,6 +46,7 @@ class GpuScene {
   std::vector<cpu::DensityMap> maps_;                 ///< host copies: density() reads them
   std::vector<cpu::TexelTriangle> texel_triangles_;   ///< as the CPU backend builds them
   std::vector<LatticeBox> map_boxes_;
+  std::uint64_t candidate_cells_ = 0;
   Buffer triangles_, map_records_, texels_, area_cdf_;
   double total_area_ = 0;
 };

@@ -4,6 +4,7 @@
 
 #include "spirv/count_cells_comp.h"
 #include "spirv/count_setup_comp.h"
+#include "spirv/count_triangles_comp.h"
 #include "spirv/realize_comp.h"
 #include "spirv/rejection_bound_comp.h"
 #include "spirv/rejection_comp.h"
@@ -18,6 +19,7 @@ namespace lightsampler::vk {
 Pipelines::Pipelines(Context& c)
     : count_setup(c.create_compute(spirv::count_setup_comp, sizeof(gpu::CountPush))),
       count_cells(c.create_compute(spirv::count_cells_comp, sizeof(gpu::CountPush))),
+      count_triangles(c.create_compute(spirv::count_triangles_comp, sizeof(gpu::CountPush))),
       total(c.create_compute(spirv::total_comp, sizeof(gpu::CountPush))),
       round(c.create_compute(spirv::round_comp, sizeof(gpu::RoundPush))),
       scan_unordered(c.create_compute(spirv::scan_unordered_comp, sizeof(gpu::ScanPush))),

@@ -11,7 +11,7 @@ namespace lightsampler::vk {
 
 struct Pipelines {
   explicit Pipelines(Context& context);
-  ComputePipeline count_setup, count_cells, total, round, scan_unordered, scan_local, scan_add,
+  ComputePipeline count_setup, count_cells, count_triangles, total, round, scan_unordered, scan_local, scan_add,
       realize, rejection_bound, rejection;
 };
 

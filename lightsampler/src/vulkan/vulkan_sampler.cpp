@@ -121,9 +121,15 @@ class VulkanSampler final : public Sampler {
     if (request.counting == Counting::raster) {
       record_raster_counting(c);
       frame.counting_used = "raster";
+    } else if (request.counting == Counting::per_triangle) {
+      c.dispatch(pipelines_.count_triangles, &push, sizeof push, groups);
+      c.barrier();
+      frame.counting_used = "per-triangle";
     } else {
       scan_.record(c, pipelines_, buffers_.footprint.address(), buffers_.cell_cdf.address(), scene_.triangle_count());
-      c.dispatch(pipelines_.count_cells, &push, sizeof push, gpu::kMaxWorkgroups);
+      // One invocation per run of kCellsPerRun candidates (count_cells.comp).
+      c.dispatch(pipelines_.count_cells, &push, sizeof push,
+                 workgroups_for((scene_.candidate_cells() + gpu::kCellsPerRun - 1) / gpu::kCellsPerRun));
       c.barrier();
       frame.counting_used = "compute";
     }
