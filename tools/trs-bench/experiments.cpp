@@ -66,23 +66,30 @@ CaseResult describe_case(const char* experiment, const Mesh& mesh, const Density
 }
 
 /// The frames of one (mesh, map, variant) series so far, to extrapolate the next count from.
-/// A frame costs a fixed part (counting: mesh and maps) plus a part proportional to the sample
-/// count: an affine fit through the last two points, or with one point the whole frame scaled
-/// (an over-estimate). Frame totals only: per-pass times are not trusted (lavapipe misplaces
-/// them).
+/// A frame costs a fixed part (the passes before the scan: mesh and maps) plus a part
+/// proportional to the sample count. With two points, an affine fit through their totals; with
+/// one, its fixed passes stay and the rest scales. Times after the scan are not used one by
+/// one: lavapipe misplaces them.
 struct SeriesTime {
   struct Point {
-    double target, total_ms;
+    double target, total_ms, fixed_ms;
   };
   std::vector<Point> points;
 
-  void add(double target, double total_ms) { points.push_back({target, total_ms}); }
+  void add(double target, double total_ms, double fixed_ms) { points.push_back({target, total_ms, fixed_ms}); }
+
+  static double fixed_ms_of(const Measurement& m) {
+    double fixed = 0;
+    for (const auto& pass : m.pass_medians)
+      if (pass.name == "counting" || pass.name == "rounding" || pass.name == "distribution") fixed += pass.ms;
+    return std::min(fixed, m.total_ms);
+  }
 
   std::optional<double> estimate_ms(double target) const {
     if (points.empty()) return std::nullopt;
     const Point& last = points.back();
     if (points.size() == 1 || last.target == points[points.size() - 2].target)
-      return last.total_ms * target / last.target;
+      return last.fixed_ms + (last.total_ms - last.fixed_ms) * target / last.target;
     const Point& before = points[points.size() - 2];
     const double per_sample = std::max((last.total_ms - before.total_ms) / (last.target - before.target), 0.0);
     return last.total_ms + per_sample * (target - last.target);
@@ -109,10 +116,10 @@ void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& set
           const std::optional<double> estimate = series[k].estimate_ms(target);
           if (estimate && *estimate > settings.measure.budget_s * 1e3) {
             result.estimate_ms = *estimate;
-            series[k].add(target, *estimate);
+            series[k].add(target, *estimate, series[k].points.back().fixed_ms);
           } else {
             result.measured = measure(sampler, frame, request, kFirstSeed, settings.measure);
-            series[k].add(target, result.measured->total_ms);
+            series[k].add(target, result.measured->total_ms, SeriesTime::fixed_ms_of(*result.measured));
             if (request.method == Method::trs) result.scan = result.measured->scan_used;
           }
           recorder.add(std::move(result));
