@@ -10,11 +10,10 @@
 #include <thread>
 #include <vector>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "cpu/passes.h"
+#include "host_scene.h"
 #include "validate.h"
 
 namespace lightsampler {
@@ -32,11 +31,6 @@ std::string cpu_model() {
       if (colon != std::string::npos) return line.substr(line.find_first_not_of(' ', colon + 1));
     }
   return "unknown CPU";
-}
-
-cpu::DensityMap copy_map(const DensityMapView& view) {
-  return {{view.texels.begin(), view.texels.end()}, view.width, view.height, view.addressing,
-          view.scale};
 }
 
 class Stopwatch {
@@ -57,36 +51,21 @@ class CpuSampler final : public Sampler {
   CpuSampler(const MeshView& mesh, std::span<const DensityMapView> maps, const CpuOptions& options)
       : threads_(options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency())),
         arena_(int(threads_)),
-        device_(cpu_model()) {
-    validate_mesh(mesh, maps.size());
-    for (std::size_t i = 0; i < maps.size(); ++i) {
-      validate_map(maps[i], i);
-      maps_.push_back(copy_map(maps[i]));
-    }
-    triangles_ = cpu::make_triangle_records(mesh, maps.size());
-    texel_triangles_.resize(triangles_.size());
-    arena_.execute([&] { update_texel_triangles(kAllMaps); });
-  }
+        device_(cpu_model()),
+        scene_(arena_.execute([&] { return HostScene(mesh, maps); })) {}
 
   std::string backend() const override { return "cpu"; }
   std::string device() const override { return device_; }
   unsigned threads() const override { return threads_; }
-  std::uint64_t triangle_count() const override { return triangles_.size(); }
-  std::size_t map_count() const override { return maps_.size(); }
+  std::uint64_t triangle_count() const override { return scene_.triangles().size(); }
+  std::size_t map_count() const override { return scene_.maps().size(); }
 
   void update_map(std::size_t index, const DensityMapView& map) override {
-    if (index >= maps_.size())
-      throw std::out_of_range("density map " + std::to_string(index) + " does not exist (" +
-                              std::to_string(maps_.size()) + " maps)");
-    validate_map(map, index);
-    maps_[index] = copy_map(map);
-    arena_.execute([&] { update_texel_triangles(index); });
+    arena_.execute([&] { scene_.update_map(index, map); });
   }
 
   float density(std::uint32_t triangle, float b1, float b2) const override {
-    if (triangle >= texel_triangles_.size())
-      throw std::out_of_range("triangle " + std::to_string(triangle) + " does not exist");
-    return cpu::texel_triangle_density(texel_triangles_[triangle], maps_, b1, b2);
+    return scene_.density(triangle, b1, b2);
   }
 
   void generate(const FrameRequest& request, Frame& frame) override {
@@ -107,20 +86,8 @@ class CpuSampler final : public Sampler {
   }
 
  private:
-  static constexpr std::size_t kAllMaps = ~std::size_t(0);
-
-  /// Texel-space triangles depend on their map's size: rebuilt when a map is replaced.
-  void update_texel_triangles(std::size_t map) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles_.size(), 4096),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i != r.end(); ++i)
-                          if (map == kAllMaps || triangles_[i].map == map)
-                            texel_triangles_[i] = cpu::make_texel_triangle(triangles_[i], maps_);
-                      });
-  }
-
   void counting_pass(Frame& frame, Stopwatch& pass) {
-    const double total = cpu::count(triangles_, texel_triangles_, maps_, frame.expected_counts,
+    const double total = cpu::count(scene_.triangles(), scene_.texel_triangles(), scene_.maps(), frame.expected_counts,
                                     frame.max_density);
     validate_expected_total(total);
     frame.expected_total = total;
@@ -156,7 +123,7 @@ class CpuSampler final : public Sampler {
       return;
     }
     const cpu::RealizationResult r = cpu::realize(
-        texel_triangles_, maps_, frame.max_density.span(), frame.cdf.span(),
+        scene_.texel_triangles(), scene_.maps(), frame.max_density.span(), frame.cdf.span(),
         frame.inverse_permutation.span(), stream_key(request.seed, Stream::realization),
         request.max_tries, frame.samples);
     frame.candidates = r.candidates;
@@ -176,7 +143,7 @@ class CpuSampler final : public Sampler {
       counting_pass(frame, pass);  // Algorithm 1 needs N: without a target it is N-bar
       target = frame.expected_total;
     }
-    const float bound = cpu::rejection_distribution(triangles_, maps_, area_cdf_);
+    const float bound = cpu::rejection_distribution(scene_.triangles(), scene_.maps(), area_cdf_);
     frame.passes.push_back({"distribution", pass.lap_ms()});
 
     const bool empty = !(bound > 0) || area_cdf_.empty() || !(area_cdf_[area_cdf_.size() - 1] > 0);
@@ -187,7 +154,7 @@ class CpuSampler final : public Sampler {
       return;
     }
     const cpu::RealizationResult r = cpu::rejection_sample(
-        texel_triangles_, maps_, area_cdf_.span(), bound, frame.sample_count,
+        scene_.texel_triangles(), scene_.maps(), area_cdf_.span(), bound, frame.sample_count,
         stream_key(request.seed, Stream::rejection), request.max_tries, frame.samples);
     frame.candidates = r.candidates;
     frame.exhausted = r.exhausted;
@@ -197,9 +164,7 @@ class CpuSampler final : public Sampler {
   unsigned threads_;
   tbb::task_arena arena_;
   std::string device_;
-  std::vector<cpu::DensityMap> maps_;
-  std::vector<cpu::TriangleRecord> triangles_;
-  std::vector<cpu::TexelTriangle> texel_triangles_;  ///< kept in step with the maps
+  HostScene scene_;
   Buffer<double> area_cdf_;
 };
 

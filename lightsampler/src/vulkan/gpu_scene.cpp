@@ -2,18 +2,12 @@
 
 #include <algorithm>
 #include <stdexcept>
-#include <string>
 
-#include "validate.h"
 #include "vulkan/layouts.h"
 
 namespace lightsampler::vk {
 
 namespace {
-
-cpu::DensityMap copy_map(const DensityMapView& view) {
-  return {{view.texels.begin(), view.texels.end()}, view.width, view.height, view.addressing, view.scale};
-}
 
 /// The lattice cells of the triangle's bounding box (float corners, as the shaders compute them).
 LatticeBox bounding_cells(const cpu::TexelTriangle& t) {
@@ -35,39 +29,29 @@ void extend(LatticeBox& box, const LatticeBox& cells) {
 }  // namespace
 
 GpuScene::GpuScene(Context& context, const MeshView& mesh, std::span<const DensityMapView> maps)
-    : context_(context) {
-  validate_mesh(mesh, maps.size());
-  for (std::size_t i = 0; i < maps.size(); ++i) {
-    validate_map(maps[i], i);
-    maps_.push_back(copy_map(maps[i]));
-  }
-  records_ = cpu::make_triangle_records(mesh, maps.size());
+    : context_(context), host_(mesh, maps) {
   upload_maps();
   upload_triangles();
   // Plain rejection sampling picks triangles by area: the CDF depends on the mesh alone.
-  std::vector<double> cdf(records_.size());
+  const auto records = host_.triangles();
+  std::vector<double> cdf(records.size());
   double sum = 0;
-  for (std::size_t t = 0; t < records_.size(); ++t) cdf[t] = sum += records_[t].area;
+  for (std::size_t t = 0; t < records.size(); ++t) cdf[t] = sum += records[t].area;
   total_area_ = sum;
   area_cdf_ = context_.create_buffer(cdf.size() * sizeof(double));
   if (!cdf.empty()) context_.upload(area_cdf_, 0, cdf.data(), cdf.size() * sizeof(double));
 }
 
 void GpuScene::update_map(std::size_t index, const DensityMapView& map) {
-  if (index >= maps_.size())
-    throw std::out_of_range("density map " + std::to_string(index) + " does not exist (" +
-                            std::to_string(maps_.size()) + " maps)");
-  validate_map(map, index);
-  const bool same_size = map.width == maps_[index].width && map.height == maps_[index].height;
-  maps_[index] = copy_map(map);
+  const bool resized = host_.update_map(index, map);
   upload_maps();  // texels and records; cheap next to the counting pass that follows
-  if (!same_size) upload_triangles();
+  if (resized) upload_triangles();
 }
 
 void GpuScene::upload_maps() {
   std::vector<gpu::GpuMap> records;
   std::vector<float> texels;
-  for (const cpu::DensityMap& m : maps_) {
+  for (const cpu::DensityMap& m : host_.maps()) {
     if (texels.size() + m.texels.size() > 0xffffffffull)
       throw std::length_error("density maps hold more than 2^32 texels in all");
     records.push_back({std::uint32_t(texels.size()), m.width, m.height, std::uint32_t(m.addressing), m.scale, 0, 0, 0});
@@ -84,14 +68,15 @@ void GpuScene::upload_maps() {
 }
 
 void GpuScene::upload_triangles() {
-  texel_triangles_.resize(records_.size());
-  map_boxes_.assign(maps_.size(), {0, 0, -1, -1});
+  const auto records = host_.triangles();
+  const auto texel_triangles = host_.texel_triangles();
+  map_boxes_.assign(host_.maps().size(), {0, 0, -1, -1});
   candidate_cells_ = 0;
-  std::vector<gpu::GpuTriangle> gpu(records_.size());
-  for (std::size_t t = 0; t < records_.size(); ++t) {
-    const cpu::TexelTriangle tt = texel_triangles_[t] = cpu::make_texel_triangle(records_[t], maps_);
+  std::vector<gpu::GpuTriangle> gpu(records.size());
+  for (std::size_t t = 0; t < records.size(); ++t) {
+    const cpu::TexelTriangle& tt = texel_triangles[t];
     gpu[t] = {tt.origin[0], tt.origin[1], tt.edge1[0], tt.edge1[1], tt.edge2[0], tt.edge2[1],
-              float(records_[t].area), tt.map};
+              float(records[t].area), tt.map};
     if (tt.map == kNoMap) continue;
     const LatticeBox cells = bounding_cells(tt);
     extend(map_boxes_[tt.map], cells);

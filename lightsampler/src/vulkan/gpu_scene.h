@@ -5,8 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "cpu/density.h"
-#include "cpu/geometry.h"
+#include "host_scene.h"
 #include "vulkan/context.h"
 
 namespace lightsampler::vk {
@@ -23,10 +22,9 @@ class GpuScene {
 
   void update_map(std::size_t index, const DensityMapView& map);
 
-  std::uint32_t triangle_count() const { return std::uint32_t(records_.size()); }
+  const HostScene& host() const { return host_; }
+  std::uint32_t triangle_count() const { return std::uint32_t(host_.triangles().size()); }
   double total_area() const { return total_area_; }
-  std::span<const cpu::DensityMap> maps() const { return maps_; }
-  std::span<const cpu::TexelTriangle> texel_triangles() const { return texel_triangles_; }
   std::span<const LatticeBox> map_boxes() const { return map_boxes_; }
   /// An upper bound of the counting pass's candidate cells (every mapped triangle's bounding
   /// box), to size its dispatch: it changes only with the geometry and the maps' sizes.
@@ -42,9 +40,7 @@ class GpuScene {
   void upload_triangles();
 
   Context& context_;
-  std::vector<cpu::TriangleRecord> records_;
-  std::vector<cpu::DensityMap> maps_;                 ///< host copies: density() reads them
-  std::vector<cpu::TexelTriangle> texel_triangles_;   ///< as the CPU backend builds them
+  HostScene host_;
   std::vector<LatticeBox> map_boxes_;
   std::uint64_t candidate_cells_ = 0;
   Buffer triangles_, map_records_, texels_, area_cdf_;

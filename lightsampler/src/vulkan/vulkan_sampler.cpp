@@ -70,14 +70,12 @@ class VulkanSampler final : public Sampler {
   std::string device() const override { return context_->device_name(); }
   unsigned threads() const override { return 0; }
   std::uint64_t triangle_count() const override { return scene_.triangle_count(); }
-  std::size_t map_count() const override { return scene_.maps().size(); }
+  std::size_t map_count() const override { return scene_.host().maps().size(); }
 
   void update_map(std::size_t index, const DensityMapView& map) override { scene_.update_map(index, map); }
 
   float density(std::uint32_t triangle, float b1, float b2) const override {
-    if (triangle >= scene_.triangle_count())
-      throw std::out_of_range("triangle " + std::to_string(triangle) + " does not exist");
-    return cpu::texel_triangle_density(scene_.texel_triangles()[triangle], scene_.maps(), b1, b2);
+    return scene_.host().density(triangle, b1, b2);
   }
 
   void generate(const FrameRequest& request, Frame& frame) override {
@@ -201,10 +199,10 @@ class VulkanSampler final : public Sampler {
     c.fill(buffers_.totals, 0, sizeof(gpu::GpuTotals), 0);
     c.barrier();
     record_counting(c, request, frame);
+    const PhiloxKey rounding_key = stream_key(request.seed, Stream::rounding);
     const gpu::RoundPush round{buffers_.expected.address(), buffers_.counts.address(), buffers_.totals.address(),
-                               request.target_count ? *request.target_count : -1.0,
-                               stream_key(request.seed, Stream::rounding)[0],
-                               stream_key(request.seed, Stream::rounding)[1], n_tri, 0};
+                               request.target_count ? *request.target_count : -1.0, rounding_key[0],
+                               rounding_key[1], n_tri, 0};
     c.dispatch(pipelines_.round, &round, sizeof round, workgroups_for(n_tri));
     c.barrier();
     c.timestamp("rounding");
@@ -250,8 +248,8 @@ class VulkanSampler final : public Sampler {
     c.fill(buffers_.totals, 0, sizeof(gpu::GpuTotals), 0);
     c.barrier();
     if (!request.target_count) record_counting(c, request, frame);  // Algorithm 1 needs N
-    for (std::size_t m = 0; m < scene_.maps().size(); ++m) {
-      const std::uint32_t texels = std::uint32_t(scene_.maps()[m].texels.size());
+    for (std::size_t m = 0; m < scene_.host().maps().size(); ++m) {
+      const std::uint32_t texels = std::uint32_t(scene_.host().maps()[m].texels.size());
       const gpu::RejectionPush push{0, scene_.map_records(), scene_.texels(), 0, 0, buffers_.totals.address(),
                                     0, 0, 0, 0, n_tri, 0, texels, std::uint32_t(m)};
       c.dispatch(pipelines_.rejection_bound, &push, sizeof push, workgroups_for(texels));

@@ -1,0 +1,41 @@
+#pragma once
+// The mesh and density maps as every backend keeps them on the host: validated copies, and the
+// texel-space triangles that the realization and Sampler::density() read.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "cpu/density.h"
+#include "cpu/geometry.h"
+#include "lightsampler/mesh.h"
+
+namespace lightsampler {
+
+class HostScene {
+ public:
+  /// Throws std::invalid_argument / std::length_error on bad input (validate.h).
+  HostScene(const MeshView& mesh, std::span<const DensityMapView> maps);
+
+  /// Replaces map `index` (std::out_of_range for a bad index). Returns whether its size changed:
+  /// then the texel-space triangles that use it were rebuilt.
+  bool update_map(std::size_t index, const DensityMapView& map);
+
+  /// Density at a point of a triangle, read as the samplers read it.
+  float density(std::uint32_t triangle, float b1, float b2) const;
+
+  std::span<const cpu::TriangleRecord> triangles() const { return triangles_; }
+  std::span<const cpu::DensityMap> maps() const { return maps_; }
+  std::span<const cpu::TexelTriangle> texel_triangles() const { return texel_triangles_; }
+
+ private:
+  static constexpr std::size_t kAllMaps = ~std::size_t(0);
+  /// Texel-space triangles depend on their map's size (in parallel: meshes can be large).
+  void build_texel_triangles(std::size_t map);
+
+  std::vector<cpu::DensityMap> maps_;
+  std::vector<cpu::TriangleRecord> triangles_;
+  std::vector<cpu::TexelTriangle> texel_triangles_;
+};
+
+}  // namespace lightsampler
