@@ -43,10 +43,5 @@ void main() {
     tries = attempt;
     gave_up = accepted ? 0ul : 1ul;
   }
-  tries = subgroupAdd(tries);
-  gave_up = subgroupAdd(gave_up);
-  if (subgroupElect()) {
-    if (tries > 0ul) atomicAdd(totals.t.candidates, tries);
-    if (gave_up > 0ul) atomicAdd(totals.t.exhausted, gave_up);
-  }
+  count_tries(totals, tries, gave_up);
 }
