@@ -102,6 +102,34 @@ TEST(EdgeCases, ClampReadsTheBorderTexelBeyondTheMap) {
   EXPECT_EQ(f.candidates, f.sample_count);
 }
 
+// texel() names the texel density() reads, after addressing: a renderer reads its own data there.
+TEST(EdgeCases, TexelIsTheOneDensityReads) {
+  Map map = trs_test::random_map(5, 3, 0.3, 7);
+  map.scale = 2.0f;
+  Mesh mesh = trs_test::random_triangles(50, -1.5f, 2.5f, 11);
+  mesh.triangle_maps.assign(50, 0);
+  mesh.triangle_maps[3] = kNoMap;
+  const auto sampler = make_cpu_sampler(mesh.view(), std::vector{map.view()});
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (std::uint32_t t = 0; t < 50; ++t) {
+    for (int i = 0; i < 20; ++i) {
+      float b1 = u(rng), b2 = u(rng);
+      if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
+      const std::optional<Texel> texel = sampler->texel(t, b1, b2);
+      if (t == 3) {
+        EXPECT_FALSE(texel.has_value());
+        continue;
+      }
+      ASSERT_TRUE(texel.has_value());
+      ASSERT_LT(texel->x, map.width);
+      ASSERT_LT(texel->y, map.height);
+      EXPECT_EQ(texel->map, 0u);
+      EXPECT_EQ(sampler->density(t, b1, b2), map.texels[texel->y * map.width + texel->x] * 2.0f);
+    }
+  }
+}
+
 TEST(EdgeCases, AllZeroMapGivesNoSamplesWithOrWithoutTarget) {
   const Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
   const Map zero{std::vector<float>(16, 0.0f), 4, 4};

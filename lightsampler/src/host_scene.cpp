@@ -40,10 +40,18 @@ bool HostScene::update_map(std::size_t index, const DensityMapView& map) {
   return resized;
 }
 
-float HostScene::density(std::uint32_t triangle, float b1, float b2) const {
+const cpu::TexelTriangle& HostScene::texel_triangle(std::uint32_t triangle) const {
   if (triangle >= texel_triangles_.size())
     throw std::out_of_range("triangle " + std::to_string(triangle) + " does not exist");
-  return cpu::texel_triangle_density(texel_triangles_[triangle], maps_, b1, b2);
+  return texel_triangles_[triangle];
+}
+
+float HostScene::density(std::uint32_t triangle, float b1, float b2) const {
+  return cpu::texel_triangle_density(texel_triangle(triangle), maps_, b1, b2);
+}
+
+std::optional<Texel> HostScene::texel(std::uint32_t triangle, float b1, float b2) const {
+  return cpu::texel_triangle_texel(texel_triangle(triangle), maps_, b1, b2);
 }
 
 void HostScene::build_texel_triangles(std::size_t map) {

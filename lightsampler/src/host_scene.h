@@ -3,6 +3,7 @@
 // texel-space triangles that the realization and Sampler::density() read.
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -23,6 +24,8 @@ class HostScene {
 
   /// Density at a point of a triangle, read as the samplers read it.
   float density(std::uint32_t triangle, float b1, float b2) const;
+  /// The texel density() reads there.
+  std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const;
 
   std::span<const cpu::TriangleRecord> triangles() const { return triangles_; }
   std::span<const cpu::DensityMap> maps() const { return maps_; }
@@ -32,6 +35,8 @@ class HostScene {
   static constexpr std::size_t kAllMaps = ~std::size_t(0);
   /// Texel-space triangles depend on their map's size (in parallel: meshes can be large).
   void build_texel_triangles(std::size_t map);
+  /// Throws std::out_of_range for a triangle that does not exist.
+  const cpu::TexelTriangle& texel_triangle(std::uint32_t triangle) const;
 
   std::vector<cpu::DensityMap> maps_;
   std::vector<cpu::TriangleRecord> triangles_;

@@ -35,4 +35,11 @@ struct DensityMapView {
   float scale = 1.0f;             ///< multiplies every texel (an emitter's strength)
 };
 
+/// One texel of one density map: column x, row y (row 0 at v = 0).
+struct Texel {
+  std::uint32_t map;
+  std::uint32_t x;
+  std::uint32_t y;
+};
+
 }  // namespace lightsampler

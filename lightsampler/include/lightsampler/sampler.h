@@ -99,6 +99,11 @@ class Sampler {
   /// Density (samples per world area) at a point of a triangle, read exactly as the sampler
   /// reads it (same texel, same addressing), so that a renderer's pdf agrees with the samples.
   virtual float density(std::uint32_t triangle, float b1, float b2) const = 0;
+
+  /// The texel that density() reads at that point, after addressing; none for a triangle
+  /// without a map. A renderer that reads its own per-texel data there (emitted radiance) stays
+  /// texel for texel with the sampler.
+  virtual std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const = 0;
 };
 
 struct CpuOptions {

@@ -68,6 +68,10 @@ class CpuSampler final : public Sampler {
     return scene_.density(triangle, b1, b2);
   }
 
+  std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const override {
+    return scene_.texel(triangle, b1, b2);
+  }
+
   void generate(const FrameRequest& request, Frame& frame) override {
     validate_request(request);
     frame.passes.clear();

@@ -33,6 +33,12 @@ inline float cell_density(const DensityMap& map, std::int64_t ix, std::int64_t i
          map.scale;
 }
 
+/// The texel that lattice cell (ix, iy) reads.
+inline Texel cell_texel(const DensityMap& map, std::uint32_t index, std::int64_t ix,
+                        std::int64_t iy) {
+  return {index, address(ix, map.width, map.addressing), address(iy, map.height, map.addressing)};
+}
+
 /// floor(x) as an integer, without the libm call or emulation of baseline x86-64.
 inline std::int64_t floor_to_int(float x) {
   const auto i = std::int64_t(x);  // truncates toward zero

@@ -2,7 +2,9 @@
 // Per-triangle data the CPU passes read: copied from the caller's mesh once, and the
 // texel-space form built each frame (it depends on the maps' sizes).
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -35,11 +37,25 @@ inline constexpr double kDegenerateUvArea = 1e-12;
 
 TexelTriangle make_texel_triangle(const TriangleRecord& t, std::span<const DensityMap> maps);
 
+/// A point of the triangle in texel units; every lookup below goes through it.
+inline std::array<float, 2> texel_space_point(const TexelTriangle& t, float b1, float b2) {
+  return {t.origin[0] + b1 * t.edge1[0] + b2 * t.edge2[0],
+          t.origin[1] + b1 * t.edge1[1] + b2 * t.edge2[1]};
+}
+
 inline float texel_triangle_density(const TexelTriangle& t, std::span<const DensityMap> maps,
                                     float b1, float b2) {
   if (t.map == kNoMap) return 0.0f;
-  return point_density(maps[t.map], t.origin[0] + b1 * t.edge1[0] + b2 * t.edge2[0],
-                       t.origin[1] + b1 * t.edge1[1] + b2 * t.edge2[1]);
+  const auto [x, y] = texel_space_point(t, b1, b2);
+  return point_density(maps[t.map], x, y);
+}
+
+inline std::optional<Texel> texel_triangle_texel(const TexelTriangle& t,
+                                                 std::span<const DensityMap> maps, float b1,
+                                                 float b2) {
+  if (t.map == kNoMap) return std::nullopt;
+  const auto [x, y] = texel_space_point(t, b1, b2);
+  return cell_texel(maps[t.map], t.map, floor_to_int(x), floor_to_int(y));
 }
 
 }  // namespace lightsampler::cpu

@@ -27,8 +27,8 @@ Candidate draw(const TexelTriangle& t, const DensityMap& map, float bound, std::
   const PhiloxCounter u =
       philox4x32({tri, std::uint32_t(rank), std::uint32_t(rank >> 32), attempt}, key);
   const Barycentrics b = triangle_map(uniform_float(u[0]), uniform_float(u[1]));
-  const float d = point_density(map, t.origin[0] + b.b1 * t.edge1[0] + b.b2 * t.edge2[0],
-                                t.origin[1] + b.b1 * t.edge1[1] + b.b2 * t.edge2[1]);
+  const auto [x, y] = texel_space_point(t, b.b1, b.b2);
+  const float d = point_density(map, x, y);
   return {b, uniform_float(u[2]) * bound < d};
 }
 

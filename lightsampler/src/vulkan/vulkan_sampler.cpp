@@ -78,6 +78,10 @@ class VulkanSampler final : public Sampler {
     return scene_.host().density(triangle, b1, b2);
   }
 
+  std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const override {
+    return scene_.host().texel(triangle, b1, b2);
+  }
+
   void generate(const FrameRequest& request, Frame& frame) override {
     validate_request(request);
     const auto start = std::chrono::steady_clock::now();
