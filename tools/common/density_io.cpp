@@ -10,17 +10,14 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 
+#include "common/color.h"
 #include "common/file_error.h"
 #include "common/input_file.h"
 
 namespace trs {
 namespace {
-
-/// The sRGB EOTF (IEC 61966-2-1), exact piecewise form.
-float srgb_to_linear(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
 
 std::string lower(std::string text) {
   std::transform(text.begin(), text.end(), text.begin(),
@@ -116,18 +113,19 @@ DensityMap load_density_map(const std::filesystem::path& file, MapEncoding encod
   }
   input->close();
 
-  map.texels.resize(texel_count);
-  const bool srgb = map.srgb_decoded;
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, texel_count),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        const float* p = &pixels[i * channels];
-                        auto linear = [&](int c) { return srgb ? srgb_to_linear(p[c]) : p[c]; };
-                        map.texels[i] = channels == 1 ? linear(0)
-                                                      : 0.2126f * linear(0) + 0.7152f * linear(1) +
-                                                            0.0722f * linear(2);
-                      }
-                    });
+  if (map.srgb_decoded) srgb_to_linear(pixels);
+  if (channels == 1) {
+    map.texels = std::move(pixels);
+  } else {
+    map.texels.resize(texel_count);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, texel_count),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                          const float* p = &pixels[i * 3];
+                          map.texels[i] = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+                        }
+                      });
+  }
   check_texels(map);
   return map;
 }

@@ -6,22 +6,13 @@
 #include <map>
 #include <string>
 
+#include "common/cli_options.h"
+
 namespace trs {
 namespace {
 
-template <class T>
-std::vector<std::string> names(const std::map<std::string, T>& choices) {
-  std::vector<std::string> result;
-  for (const auto& [name, value] : choices) result.push_back(name);
-  return result;
-}
-
 const std::map<std::string, lightsampler::Method> kMethods = {
     {"trs", lightsampler::Method::trs}, {"rs", lightsampler::Method::rejection}};
-const std::map<std::string, lightsampler::Backend> kBackends = {
-    {"cpu", lightsampler::Backend::cpu},
-    {"auto", lightsampler::Backend::automatic},
-    {"vulkan", lightsampler::Backend::vulkan}};
 const std::map<std::string, lightsampler::Counting> kCountings = {
     {"auto", lightsampler::Counting::automatic},
     {"raster", lightsampler::Counting::raster},
@@ -35,17 +26,6 @@ const std::map<std::string, lightsampler::Addressing> kAddressing = {
     {"wrap", lightsampler::Addressing::wrap}, {"clamp", lightsampler::Addressing::clamp}};
 const std::map<std::string, MapEncoding> kEncodings = {
     {"auto", MapEncoding::automatic}, {"srgb", MapEncoding::srgb}, {"linear", MapEncoding::linear}};
-
-/// Finite and non-negative; NaN fails every comparison, so it is rejected too.
-const CLI::Validator kFiniteNonNegative(
-    [](std::string& text) -> std::string {
-      double value = 0;
-      if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < 0) {
-        return "must be a finite non-negative number: " + text;
-      }
-      return {};
-    },
-    "NUMBER >= 0");
 
 }  // namespace
 

@@ -1,0 +1,17 @@
+# Regenerates the reference images of the render tests with the `power` strategy (independent
+# of Triangle Rejection Sampling), TRS_REFERENCE_SPP samples per pixel:
+#   cmake -D RENDER=build/bin/trs-render -P tests/render/make_references.cmake
+include(${CMAKE_CURRENT_LIST_DIR}/reference_settings.cmake)
+get_filename_component(root ${CMAKE_CURRENT_LIST_DIR}/../.. ABSOLUTE)
+foreach(scene IN LISTS TRS_REFERENCE_SCENES)
+  set(prefix ${CMAKE_CURRENT_LIST_DIR}/references/${scene})
+  message(STATUS "${scene}: ${TRS_REFERENCE_SPP} spp")
+  execute_process(
+    COMMAND ${RENDER} ${root}/scenes/${scene}/${scene}.gltf --out ${prefix}.exr
+            --variance ${prefix}.variance.exr --strategy power --spp ${TRS_REFERENCE_SPP}
+            --seed 1 ${TRS_REFERENCE_SETTINGS} --quiet
+    RESULT_VARIABLE status)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "trs-render failed on ${scene} (${status})")
+  endif()
+endforeach()

@@ -1,0 +1,57 @@
+#pragma once
+// Scenes built in code for the tracer's tests: quads with UVs, materials, textures.
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "tracer/scene.h"
+
+namespace trs_test {
+
+/// Appends the quad p0 p1 p2 p3 (two triangles 0 1 2 and 0 2 3; front face counter-clockwise)
+/// with UVs (0,0) (1,0) (1,1) (0,1) at its corners.
+inline void add_quad(tracer::Scene& scene, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3,
+                     std::uint32_t material) {
+  tracer::Mesh& m = scene.mesh;
+  const auto base = std::uint32_t(m.positions.size());
+  m.positions.insert(m.positions.end(), {p0, p1, p2, p3});
+  m.uvs.insert(m.uvs.end(), {{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  m.materials.insert(m.materials.end(), {material, material});
+}
+
+inline std::uint32_t add_material(tracer::Scene& scene, const tracer::Material& material) {
+  scene.materials.push_back(material);
+  return std::uint32_t(scene.materials.size() - 1);
+}
+
+/// A diffuse-looking dielectric.
+inline tracer::Material matte(glm::vec3 color, float roughness = 1.0f) {
+  tracer::Material m;
+  m.base_color = color;
+  m.metallic = 0.0f;
+  m.roughness = roughness;
+  return m;
+}
+
+/// A texture of random colours, `zero_fraction` of its texels black, nearest lookup, clamped.
+inline std::int32_t add_random_texture(tracer::Scene& scene, std::uint32_t width,
+                                       std::uint32_t height, double zero_fraction,
+                                       std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> value(0.05f, 1.0f);
+  std::bernoulli_distribution zero(zero_fraction);
+  tracer::Texture t;
+  t.name = "random";
+  t.width = width;
+  t.height = height;
+  t.wrap_s = t.wrap_t = tracer::Wrap::clamp;
+  t.nearest = true;
+  for (std::uint32_t i = 0; i < width * height; ++i)
+    t.texels.push_back(zero(rng) ? glm::vec3(0.0f) : glm::vec3(value(rng), value(rng), value(rng)));
+  scene.textures.push_back(std::move(t));
+  return std::int32_t(scene.textures.size() - 1);
+}
+
+}  // namespace trs_test

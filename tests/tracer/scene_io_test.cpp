@@ -1,0 +1,426 @@
+// The tracer's scene input and image output: glTF scenes written by each test into a fresh
+// temporary directory (JSON with a .bin buffer, PNG and EXR textures written with OpenImageIO),
+// the colour module, and EXR/PNG outputs read back.
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "common/color.h"
+#include "common/file_error.h"
+#include "common/image_output.h"
+#include "tracer/gltf_scene.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr int kFloat = 5126, kUnsignedShort = 5123;
+
+/// A glTF document under construction: its JSON and one binary buffer.
+struct Gltf {
+  json doc = {
+      {"asset", {{"version", "2.0"}}}, {"scene", 0}, {"scenes", {{{"nodes", json::array()}}}}};
+  std::string bin;
+
+  int view(const void* data, std::size_t size) {
+    bin.resize((bin.size() + 3) / 4 * 4, '\0');
+    doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", size}});
+    bin.append(static_cast<const char*>(data), size);
+    return int(doc["bufferViews"].size()) - 1;
+  }
+  template <class T>
+  int accessor(const std::vector<T>& values, int component_type, const char* type) {
+    doc["accessors"].push_back({{"bufferView", view(values.data(), values.size() * sizeof(T))},
+                                {"componentType", component_type},
+                                {"type", type},
+                                {"count", values.size()}});
+    return int(doc["accessors"].size()) - 1;
+  }
+  /// A one-primitive mesh of the triangles `indices` over `positions`; `extra` adds to the
+  /// primitive (attributes included).
+  int mesh(const std::vector<glm::vec3>& positions, const std::vector<std::uint16_t>& indices,
+           json extra = json::object()) {
+    json primitive = {{"attributes", {{"POSITION", accessor(positions, kFloat, "VEC3")}}},
+                      {"indices", accessor(indices, kUnsignedShort, "SCALAR")}};
+    for (auto& [key, value] : extra.items()) {
+      if (key == "attributes") {
+        primitive["attributes"].update(value);
+      } else {
+        primitive[key] = value;
+      }
+    }
+    doc["meshes"].push_back({{"primitives", {primitive}}});
+    return int(doc["meshes"].size()) - 1;
+  }
+  int node(json node, bool root = true) {
+    doc["nodes"].push_back(std::move(node));
+    const int index = int(doc["nodes"].size()) - 1;
+    if (root) doc["scenes"][0]["nodes"].push_back(index);
+    return index;
+  }
+  fs::path write(const fs::path& directory, const std::string& name) {
+    doc["buffers"] = {{{"uri", name + ".bin"}, {"byteLength", bin.size()}}};
+    std::ofstream(directory / (name + ".bin"), std::ios::binary) << bin;
+    std::ofstream(directory / (name + ".gltf")) << doc.dump(1);
+    return directory / (name + ".gltf");
+  }
+};
+
+std::string base64(const std::string& bytes) {
+  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string text;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    std::uint32_t group = std::uint32_t(std::uint8_t(bytes[i])) << 16;
+    if (i + 1 < bytes.size()) group |= std::uint32_t(std::uint8_t(bytes[i + 1])) << 8;
+    if (i + 2 < bytes.size()) group |= std::uint8_t(bytes[i + 2]);
+    for (std::size_t k = 0; k < 4; ++k)
+      text += i + k <= bytes.size() ? digits[(group >> (18 - 6 * k)) & 63] : '=';
+  }
+  return text;
+}
+
+const std::vector<glm::vec3> kTriangle = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};  // facing +z
+
+void expect_near(glm::vec3 actual, glm::vec3 expected, float tolerance = 1e-5f) {
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(actual[k], expected[k], tolerance) << "component " << k;
+}
+
+/// Throws unless `action` fails with a FileError naming `file` and saying `problem`.
+void expect_error(const std::function<void()>& action, const fs::path& file,
+                  const std::string& problem) {
+  try {
+    action();
+    ADD_FAILURE() << "no error; expected one naming " << file;
+  } catch (const trs::FileError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find(file.string() + ": "), std::string::npos) << message;
+    EXPECT_NE(message.find(problem), std::string::npos) << message;
+  }
+}
+
+class SceneIoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() /
+           ("scene_io_test-" + std::to_string(::getpid()) + "-" + test->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path file(const std::string& name) const { return dir_ / name; }
+
+  /// Writes `values`, 3 per pixel unless `channels` says otherwise.
+  fs::path write_image(const std::string& name, int width, int height, OIIO::TypeDesc format,
+                       const std::vector<float>& values, int channels = 3) {
+    const fs::path path = file(name);
+    auto out = OIIO::ImageOutput::create(path.string());
+    const OIIO::ImageSpec spec(width, height, channels, format);
+    EXPECT_TRUE(out && out->open(path.string(), spec) &&
+                out->write_image(OIIO::TypeDesc::FLOAT, values.data()) && out->close());
+    return path;
+  }
+
+  fs::path dir_;
+};
+
+constexpr double kHalfSqrt2 = 0.70710678118654752;
+
+TEST_F(SceneIoTest, TransformsApplyToPositionsAndNormals) {
+  Gltf gltf;
+  const glm::vec3 diagonal = glm::normalize(glm::vec3(1, 1, 0));
+  const int mesh =
+      gltf.mesh({{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, {0, 1, 2},
+                {{"attributes",
+                  {{"NORMAL", gltf.accessor(std::vector<glm::vec3>{diagonal, {0, 0, 1}, {0, 0, 1}},
+                                            kFloat, "VEC3")}}}});
+  // Parent: translate and stretch x; child: 90 degrees about z.
+  const int child =
+      gltf.node({{"mesh", mesh}, {"rotation", {0, 0, kHalfSqrt2, kHalfSqrt2}}}, false);
+  gltf.node({{"children", {child}}, {"translation", {10, 0, 0}}, {"scale", {2, 1, 1}}});
+  gltf.node({{"mesh", mesh},
+             {"translation", {1, 2, 3}},
+             {"rotation", {0, 0, kHalfSqrt2, kHalfSqrt2}},
+             {"scale", {2, 2, 2}}});
+  const tracer::Scene scene = tracer::load_gltf_scene(gltf.write(dir_, "transforms"));
+  const tracer::Mesh& m = scene.mesh;
+  ASSERT_EQ(m.triangle_count(), 2u);
+  ASSERT_EQ(m.positions.size(), 6u);
+  ASSERT_EQ(m.normals.size(), 6u);
+  // The chain first (document order), then T * R * S.
+  expect_near(m.positions[m.indices[0]], {10, 1, 0});
+  expect_near(m.positions[m.indices[1]], {8, 0, 0});
+  expect_near(m.positions[m.indices[2]], {10, 0, 1});
+  expect_near(m.positions[m.indices[3]], {1, 4, 3});
+  expect_near(m.positions[m.indices[4]], {-1, 2, 3});
+  expect_near(m.positions[m.indices[5]], {1, 2, 5});
+  // Normals by the inverse transpose: (-1, 1, 0) after the rotation, x halved by the stretch.
+  expect_near(m.normals[m.indices[0]], glm::normalize(glm::vec3(-0.5f, 1, 0)));
+  expect_near(m.normals[m.indices[3]], glm::normalize(glm::vec3(-1, 1, 0)));
+  expect_near(m.normals[m.indices[4]], {0, 0, 1});
+  for (const glm::vec2& uv : m.uvs) EXPECT_EQ(uv, glm::vec2(0.0f));
+  // No materials in the file: one default, shared.
+  ASSERT_EQ(scene.materials.size(), 1u);
+  EXPECT_EQ(m.materials, (std::vector<std::uint32_t>{0, 0}));
+  EXPECT_FALSE(scene.camera.has_value());
+}
+
+TEST_F(SceneIoTest, MirroredTransformKeepsTheFrontFace) {
+  Gltf gltf;
+  const int mesh = gltf.mesh(kTriangle, {0, 1, 2});
+  gltf.node({{"mesh", mesh}, {"scale", {-1, 1, 1}}});
+  gltf.node({{"mesh", mesh}, {"scale", {0, 0, 0}}});  // hidden: nothing to render
+  const tracer::Mesh m = tracer::load_gltf_scene(gltf.write(dir_, "mirror")).mesh;
+  ASSERT_EQ(m.triangle_count(), 1u);
+  EXPECT_TRUE(m.normals.empty());  // no primitive has normals
+  const glm::vec3 a = m.positions[m.indices[0]], b = m.positions[m.indices[1]],
+                  c = m.positions[m.indices[2]];
+  expect_near(glm::normalize(glm::cross(b - a, c - a)), {0, 0, 1});
+}
+
+TEST_F(SceneIoTest, PrimitiveWithoutNormalsGetsFaceNormalsBesideOneWithNormals) {
+  Gltf gltf;
+  const std::vector<glm::vec3> up(3, glm::vec3(0, 1, 0));
+  gltf.node(
+      {{"mesh", gltf.mesh(kTriangle, {0, 1, 2},
+                          {{"attributes", {{"NORMAL", gltf.accessor(up, kFloat, "VEC3")}}}})}});
+  gltf.node(
+      {{"mesh", gltf.mesh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, {0, 1, 2, 2, 1, 3})}});
+  const tracer::Mesh m = tracer::load_gltf_scene(gltf.write(dir_, "mixed")).mesh;
+  ASSERT_EQ(m.triangle_count(), 3u);
+  ASSERT_EQ(m.normals.size(), m.positions.size());
+  EXPECT_EQ(m.positions.size(), 3u + 6u);
+  for (std::size_t i = 3; i < 9; ++i) expect_near(m.normals[m.indices[i]], {0, 0, 1});
+}
+
+TEST_F(SceneIoTest, MaterialsAndTextures) {
+  // Texel 0 is sRGB 128 everywhere; texel 1 tells channels apart.
+  const std::vector<float> texels = {128 / 255.0f, 128 / 255.0f, 128 / 255.0f, 1.0f, 0.0f, 0.25f};
+  write_image("colour.png", 2, 1, OIIO::TypeDesc::UINT8, texels);
+  write_image("float.exr", 2, 1, OIIO::TypeDesc::FLOAT, {0.5f, 0.5f, 0.5f, 2.0f, 0.0f, 0.25f});
+  std::ifstream png_file(file("colour.png"), std::ios::binary);
+  const std::string png((std::istreambuf_iterator<char>(png_file)), {});
+
+  Gltf gltf;
+  gltf.doc["images"] = {
+      {{"uri", "colour.png"}},
+      {{"uri", "float.exr"}},
+      {{"bufferView", gltf.view(png.data(), png.size())}, {"mimeType", "image/png"}},
+      {{"uri", "data:image/png;base64," + base64(png)}}};
+  gltf.doc["samplers"] = {{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}}};
+  gltf.doc["textures"] = {
+      {{"source", 0}, {"sampler", 0}}, {{"source", 1}}, {{"source", 2}}, {{"source", 3}}};
+  gltf.doc["materials"] = {
+      {{"name", "lamp"},
+       {"pbrMetallicRoughness",
+        {{"baseColorFactor", {0.5, 0.25, 0.125, 0.3}},
+         {"baseColorTexture", {{"index", 0}}},
+         {"metallicFactor", 0.2},
+         {"roughnessFactor", 0.7},
+         {"metallicRoughnessTexture", {{"index", 0}}}}},
+       {"emissiveFactor", {1, 0.5, 0}},
+       {"emissiveTexture", {{"index", 1}}},
+       {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 40}}}}},
+       {"doubleSided", true}},
+      {{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 2}}}}},
+       {"emissiveTexture", {{"index", 3}}}}};
+  gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2}, {{"material", 1}})}});
+  gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2}, {{"material", 0}})}});
+  gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2})}});
+  const tracer::Scene scene = tracer::load_gltf_scene(gltf.write(dir_, "materials"));
+
+  ASSERT_EQ(scene.materials.size(), 3u);  // the file's two and the default
+  EXPECT_EQ(scene.mesh.materials, (std::vector<std::uint32_t>{1, 0, 2}));
+  const tracer::Material& lamp = scene.materials[0];
+  EXPECT_EQ(lamp.name, "lamp");
+  expect_near(lamp.base_color, {0.5f, 0.25f, 0.125f});
+  EXPECT_FLOAT_EQ(lamp.metallic, 0.2f);
+  EXPECT_FLOAT_EQ(lamp.roughness, 0.7f);
+  expect_near(lamp.emissive_factor, {1.0f, 0.5f, 0.0f});
+  EXPECT_FLOAT_EQ(lamp.emissive_strength, 40.0f);
+  EXPECT_TRUE(lamp.double_sided);
+  EXPECT_TRUE(lamp.emissive());
+  EXPECT_FALSE(scene.materials[2].emissive());
+  EXPECT_FALSE(scene.materials[2].double_sided);
+
+  ASSERT_EQ(scene.textures.size(), 5u);
+  const tracer::Texture& base = scene.textures.at(std::size_t(lamp.base_color_texture));
+  const tracer::Texture& data = scene.textures.at(std::size_t(lamp.metallic_roughness_texture));
+  const tracer::Texture& emissive = scene.textures.at(std::size_t(lamp.emissive_texture));
+  const tracer::Texture& embedded =
+      scene.textures.at(std::size_t(scene.materials[1].base_color_texture));
+  const tracer::Texture& data_uri =
+      scene.textures.at(std::size_t(scene.materials[1].emissive_texture));
+  ASSERT_EQ(base.width, 2u);
+  ASSERT_EQ(base.height, 1u);
+  expect_near(base.texels[0], glm::vec3(0.21586f), 1e-4f);      // sRGB 128 decoded
+  expect_near(base.texels[1], {1.0f, 0.0f, 0.05127f}, 1e-4f);   // 0.25 stored as 64
+  expect_near(data.texels[0], glm::vec3(128 / 255.0f), 1e-6f);  // data: as stored
+  expect_near(emissive.texels[1], {2.0f, 0.0f, 0.25f}, 0.0f);   // float: already linear
+  expect_near(embedded.texels[0], base.texels[0], 0.0f);
+  expect_near(data_uri.texels[1], base.texels[1], 0.0f);
+  EXPECT_EQ(base.wrap_s, tracer::Wrap::clamp);
+  EXPECT_EQ(base.wrap_t, tracer::Wrap::mirrored_repeat);
+  EXPECT_TRUE(base.nearest);
+  EXPECT_EQ(emissive.wrap_s, tracer::Wrap::repeat);
+  EXPECT_EQ(emissive.wrap_t, tracer::Wrap::repeat);
+  EXPECT_FALSE(emissive.nearest);
+}
+
+TEST_F(SceneIoTest, FirstCameraOfTheHierarchy) {
+  Gltf gltf;
+  gltf.doc["cameras"] = {
+      {{"type", "perspective"},
+       {"perspective", {{"yfov", 0.6}, {"aspectRatio", 1.5}, {"znear", 0.1}}}},
+      {{"type", "perspective"}, {"perspective", {{"yfov", 0.9}, {"znear", 0.1}}}}};
+  // 90 degrees about y turns -z (forward) into -x.
+  const int eye = gltf.node({{"camera", 0}, {"rotation", {0, kHalfSqrt2, 0, kHalfSqrt2}}}, false);
+  gltf.node({{"children", {eye}}, {"translation", {1, 2, 3}}});
+  gltf.node({{"camera", 1}});
+  gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2})}});
+  const tracer::Scene scene = tracer::load_gltf_scene(gltf.write(dir_, "camera"));
+  ASSERT_TRUE(scene.camera.has_value());
+  expect_near(scene.camera->position, {1, 2, 3});
+  expect_near(scene.camera->forward, {-1, 0, 0});
+  expect_near(scene.camera->up, {0, 1, 0});
+  EXPECT_FLOAT_EQ(scene.camera->yfov, 0.6f);
+  EXPECT_FLOAT_EQ(scene.camera->aspect, 1.5f);
+}
+
+TEST_F(SceneIoTest, ErrorsNameTheFileAtFault) {
+  Gltf gltf;
+  gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2}, {{"material", 0}})}});
+  gltf.doc["images"] = {{{"uri", "absent.png"}}};
+  gltf.doc["textures"] = {{{"source", 0}}};
+  gltf.doc["materials"] = {{{"emissiveTexture", {{"index", 0}}}}};
+  expect_error([&] { tracer::load_gltf_scene(gltf.write(dir_, "missing")); }, file("absent.png"),
+               "no such file");
+
+  std::vector<float> texels(6, 0.5f);
+  texels[4] = std::numeric_limits<float>::infinity();
+  write_image("inf.exr", 2, 1, OIIO::TypeDesc::FLOAT, texels);
+  gltf.doc["images"][0]["uri"] = "inf.exr";
+  expect_error([&] { tracer::load_gltf_scene(gltf.write(dir_, "inf")); }, file("inf.exr"),
+               "not finite");
+
+  gltf.doc["materials"][0]["emissiveTexture"]["texCoord"] = 1;
+  const fs::path texcoord = gltf.write(dir_, "texcoord");
+  expect_error([&] { tracer::load_gltf_scene(texcoord); }, texcoord, "TEXCOORD_1");
+  gltf.doc.erase("materials");
+  gltf.doc["meshes"][0]["primitives"][0].erase("material");
+
+  gltf.doc["cameras"] = {{{"type", "orthographic"},
+                          {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0}, {"zfar", 1}}}}};
+  gltf.node({{"camera", 0}});
+  const fs::path orthographic = gltf.write(dir_, "orthographic");
+  expect_error([&] { tracer::load_gltf_scene(orthographic); }, orthographic,
+               "orthographic cameras are not supported");
+  gltf.doc["nodes"][1].erase("camera");
+
+  Gltf range = gltf;
+  range.mesh(kTriangle, {0, 1, 3});
+  range.doc["nodes"][1]["mesh"] = 1;
+  const fs::path out_of_range = range.write(dir_, "range");
+  expect_error([&] { tracer::load_gltf_scene(out_of_range); }, out_of_range,
+               "index 2 is 3, but the primitive has 3 vertices");
+
+  gltf.doc["accessors"][0]["count"] = 1000;  // past the end of its buffer view
+  const fs::path overrun = gltf.write(dir_, "overrun");
+  expect_error([&] { tracer::load_gltf_scene(overrun); }, overrun, "extends past the end");
+
+  std::ofstream(file("broken.gltf")) << R"({"asset": {"version": "2.0"}, "scenes": [)";
+  expect_error([&] { tracer::load_gltf_scene(file("broken.gltf")); }, file("broken.gltf"),
+               "malformed glTF");
+  fs::remove(file("overrun.bin"));
+  expect_error([&] { tracer::load_gltf_scene(overrun); }, overrun, "malformed glTF");
+  expect_error([&] { tracer::load_gltf_scene(file("absent.gltf")); }, file("absent.gltf"),
+               "no such file");
+}
+
+TEST(Color, SrgbRoundTripAndReferencePoints) {
+  std::vector<float> values(100'001);  // pixels, and one value left over
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = 2.0f * float(i) / 100'000.0f;
+  std::vector<float> round_trip = values;
+  trs::linear_to_srgb(round_trip);
+  trs::srgb_to_linear(round_trip);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    ASSERT_NEAR(round_trip[i], values[i], 1e-6f + 1e-5f * values[i]) << i;
+
+  std::vector<float> points = {0.5f, 128 / 255.0f, 0.04045f, 1.0f};
+  trs::srgb_to_linear(points);
+  EXPECT_NEAR(points[0], 0.214041f, 1e-5f);
+  EXPECT_NEAR(points[1], 0.215861f, 1e-5f);
+  EXPECT_NEAR(points[2], 0.0031308f, 1e-6f);
+  EXPECT_NEAR(points[3], 1.0f, 1e-6f);
+}
+
+TEST_F(SceneIoTest, ExrRoundTripIsExact) {
+  const std::vector<float> rgb = {0.0f, 1e-20f,      -3.5f, 65504.0f, 1e30f,
+                                  0.1f, 1.0f / 3.0f, 2.0f,  7.25f};
+  trs::write_exr(file("render.exr"), 3, 1, rgb.data());
+  const trs::Image image = trs::read_exr(file("render.exr"));
+  EXPECT_EQ(image.width, 3u);
+  EXPECT_EQ(image.height, 1u);
+  EXPECT_EQ(image.rgb, rgb);
+  EXPECT_FALSE(image.integer);
+
+  write_image("grey.exr", 2, 1, OIIO::TypeDesc::FLOAT, {0.25f, 4.0f}, 1);
+  EXPECT_EQ(trs::read_exr(file("grey.exr")).rgb,
+            (std::vector<float>{0.25f, 0.25f, 0.25f, 4.0f, 4.0f, 4.0f}));
+
+  trs::write_png_preview(file("preview.png"), 3, 1, rgb.data());
+  expect_error([&] { trs::read_exr(file("preview.png")); }, file("preview.png"), "not OpenEXR");
+  std::ofstream(file("garbage.exr")) << "not an image";
+  expect_error([&] { trs::read_exr(file("garbage.exr")); }, file("garbage.exr"), "cannot read");
+}
+
+TEST_F(SceneIoTest, PngPreviewIsSrgbEncodedAndClamped) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<float> rgb = {0.0f, 1.0f, 4.0f, -1.0f, nan, 0.18f, 0.5f, 0.0031308f, 0.25f};
+  trs::write_png_preview(file("preview.png"), 3, 1, rgb.data());
+  trs::write_png_preview(file("brighter.png"), 3, 1, rgb.data(), 1.0f);
+  auto read_bytes = [](const fs::path& path) {
+    auto in = OIIO::ImageInput::open(path.string());
+    std::vector<unsigned char> bytes(9);
+    EXPECT_TRUE(in && in->spec().nchannels == 3 && in->spec().format == OIIO::TypeDesc::UINT8 &&
+                in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, bytes.data()));
+    return bytes;
+  };
+  EXPECT_EQ(read_bytes(file("preview.png")),
+            (std::vector<unsigned char>{0, 255, 255, 0, 0, 118, 188, 10, 137}));
+  EXPECT_EQ(read_bytes(file("brighter.png"))[8], 188);  // 0.25 one stop up is 0.5
+}
+
+TEST_F(SceneIoTest, FailedWriteLeavesNoFile) {
+  const std::vector<float> rgb(12, 0.5f);
+  const fs::path nowhere = file("no-such-directory") / "render.exr";
+  expect_error([&] { trs::write_exr(nowhere, 2, 2, rgb.data()); }, nowhere, "temporary");
+  // libpng refuses images over a million pixels wide: the encoder fails after the temporary was
+  // created, and the previous file stays as it was.
+  std::ofstream(file("render.png")) << "previous";
+  const std::vector<float> wide(3 * 1'000'001, 0.5f);
+  expect_error([&] { trs::write_png_preview(file("render.png"), 1'000'001, 1, wide.data()); },
+               file("render.png"), "cannot encode");
+  expect_error([&] { trs::write_exr(file("empty.exr"), 0, 2, rgb.data()); }, file("empty.exr"),
+               "without pixels");
+  std::vector<fs::path> entries;
+  for (const auto& entry : fs::directory_iterator(dir_)) entries.push_back(entry.path());
+  EXPECT_EQ(entries, std::vector<fs::path>{file("render.png")});
+  std::ifstream previous(file("render.png"));
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(previous)), {}), "previous");
+}
+
+}  // namespace

@@ -1,0 +1,39 @@
+#pragma once
+// Command-line pieces the tools share: named choices and number checks for CLI11.
+
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "lightsampler/vulkan.h"
+
+namespace trs {
+
+/// The names of a choice map, for CLI::IsMember.
+template <class T>
+std::vector<std::string> names(const std::map<std::string, T>& choices) {
+  std::vector<std::string> result;
+  for (const auto& [name, value] : choices) result.push_back(name);
+  return result;
+}
+
+inline const std::map<std::string, lightsampler::Backend> kBackends = {
+    {"cpu", lightsampler::Backend::cpu},
+    {"auto", lightsampler::Backend::automatic},
+    {"vulkan", lightsampler::Backend::vulkan}};
+
+/// Finite and non-negative; NaN fails every comparison, so it is rejected too.
+inline const CLI::Validator kFiniteNonNegative(
+    [](std::string& text) -> std::string {
+      double value = 0;
+      if (!CLI::detail::lexical_cast(text, value) || !std::isfinite(value) || value < 0) {
+        return "must be a finite non-negative number: " + text;
+      }
+      return {};
+    },
+    "NUMBER >= 0");
+
+}  // namespace trs

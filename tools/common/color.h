@@ -1,0 +1,25 @@
+#pragma once
+// Colour encodings, through OpenColorIO: the one place that knows the sRGB transfer curve.
+// Textures and density maps stored as 8- or 16-bit integers are sRGB-encoded (glTF says so for
+// colour textures; most painted maps are), renders are linear Rec. 709, previews are shown on
+// sRGB displays. sRGB and Rec. 709 share their primaries, so both directions are the curve alone.
+//
+// The processors are built from a raw OpenColorIO config with the IEC 61966-2-1 piecewise curve
+// (an ExponentWithLinearTransform: gamma 2.4, offset 0.055). The config named by the OCIO
+// environment variable is deliberately not consulted: the tracer's contract is linear Rec. 709
+// and glTF fixes texture encodings, whereas a studio config's scene_linear role (often ACEScg)
+// would silently change the primaries, and results would depend on the user's environment.
+
+#include <span>
+
+namespace trs {
+
+/// Decodes sRGB-encoded values to linear, in place. The curve acts on each value on its own, so
+/// any packed layout (RGB, grey) works. Values outside [0, 1] continue the curve's linear segment
+/// below 0 and its power segment above 1.
+void srgb_to_linear(std::span<float> values);
+
+/// Encodes linear values for an sRGB display, in place: the inverse of srgb_to_linear.
+void linear_to_srgb(std::span<float> values);
+
+}  // namespace trs

@@ -1,0 +1,46 @@
+#pragma once
+// RGB images in and out of the tools, through OpenImageIO: the renderer's linear EXR outputs and
+// their sRGB PNG previews, written atomically (complete or not at all, like every output of the
+// tools), and images read back as RGB floats (renders to compare, textures).
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace trs {
+
+struct Image {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::vector<float> rgb;  ///< 3 per pixel, row-major, row 0 = the image's top row
+  /// The file stores 8- or 16-bit integers: colour stored so is display-encoded (sRGB) by
+  /// convention, whereas float files hold linear values. The values here are as stored.
+  bool integer = false;
+};
+
+/// Writes linear RGB (3 floats per pixel, top row first) as a 32-bit float OpenEXR file, ZIP
+/// compressed, so that reading it back gives the same floats. Throws FileError naming `file`.
+void write_exr(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
+               const float* rgb);
+
+/// Writes linear RGB for viewing: scaled by 2^exposure, encoded for an sRGB display, clamped to
+/// [0, 1] (NaN to 0) and rounded to 8-bit RGB PNG. Throws FileError naming `file`.
+void write_png_preview(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
+                       const float* rgb, float exposure = 0.0f);
+
+/// Reads an OpenEXR file's first three channels (one grey channel is repeated); another format
+/// is an error, as comparing renders through an 8-bit file would compare its rounding.
+Image read_exr(const std::filesystem::path& file);
+
+/// Reads any image OpenImageIO decodes: the first subimage's R, G, B (grey repeated).
+Image read_image(const std::filesystem::path& file);
+
+/// The same for an image file's bytes embedded in `file` (a glTF buffer or data URI); `format`
+/// is an extension ("png", "jpeg") and `what` names the image in messages. Formats that
+/// OpenImageIO cannot read from memory are an error: nothing is written to disk.
+Image read_image(std::span<const unsigned char> bytes, const std::string& format,
+                 const std::filesystem::path& file, const std::string& what);
+
+}  // namespace trs

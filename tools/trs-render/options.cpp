@@ -1,0 +1,94 @@
+#include "options.h"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <map>
+#include <string>
+
+#include "common/cli_options.h"
+
+namespace trs {
+namespace {
+
+const std::map<std::string, tracer::StrategyKind> kStrategies = {
+    {"uniform", tracer::StrategyKind::uniform},
+    {"power", tracer::StrategyKind::power},
+    {"trs", tracer::StrategyKind::trs}};
+
+}  // namespace
+
+std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
+  CLI::App app(
+      "Renders a glTF 2.0 scene lit by its emissive textures with a path tracer whose next-event "
+      "estimation samples lights uniformly by area, by triangle power, or from millions of point "
+      "lights drawn every frame by Triangle Rejection Sampling.",
+      "trs-render");
+  RenderOptions options;
+  tracer::RenderSettings& r = options.render;
+  std::string strategy = "trs", backend = "auto", out, stats, preview, variance;
+  bool quiet = false;
+
+  app.set_config("--settings", "", "settings file of `key = value` lines (TOML) with the long "
+                                   "option names, e.g. spp = 64; the command line wins");
+  app.add_option("SCENE", options.scene, "glTF 2.0 scene (.gltf, .glb)")->required();
+  // An option given twice takes its last value, so that a script can override its own defaults.
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  app.add_option("--out", out, "linear float RGB OpenEXR image")->required();
+  app.add_option("--spp", r.spp, "samples per pixel: frames of one path per pixel")
+      ->capture_default_str();
+  app.add_option("--strategy", strategy, "light sampling for next-event estimation")
+      ->check(CLI::IsMember(names(kStrategies)))
+      ->capture_default_str();
+  app.add_option("--lights", r.strategy.lights,
+                 "trs: expected point lights drawn per frame (1e6 notation accepted)")
+      ->check(kFiniteNonNegative)
+      ->capture_default_str();
+  app.add_option("--seed", r.seed, "random seed of the paths and the light sets")
+      ->capture_default_str();
+  app.add_option("--width", r.width, "image width, pixels")->capture_default_str();
+  app.add_option("--height", r.height, "image height, pixels")->capture_default_str();
+  app.add_option("--max-depth", r.max_depth,
+                 "most bounces of a path: 0 shows the emitters only, 1 is direct lighting")
+      ->capture_default_str();
+  app.add_option("--threads", r.threads, "worker threads; 0: all hardware threads")
+      ->capture_default_str();
+  app.add_option("--backend", backend,
+                 "trs light sampler; auto: Vulkan on a GPU, else the native CPU backend")
+      ->check(CLI::IsMember(names(kBackends)))
+      ->capture_default_str();
+  app.add_option("--device", r.strategy.sampler.vulkan.device,
+                 "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE)");
+  app.add_option("--stats", stats, "JSON summary of the run");
+  app.add_option("--preview", preview, "8-bit sRGB PNG preview of the image");
+  app.add_option("--variance", variance,
+                 "OpenEXR of each pixel's per-sample luminance variance (all three channels), "
+                 "for noise studies and noise-aware image comparison (trs-imgdiff)");
+  app.add_option("--exposure", options.exposure, "preview exposure, stops")->capture_default_str();
+  app.add_flag("--quiet", quiet, "no progress bar");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "trs-render: error: " << e.what() << "\nRun with --help for more information.\n";
+    return kUsageError;
+  }
+  if (r.width == 0 || r.height == 0 || r.spp == 0) {
+    std::cerr << "trs-render: error: --width, --height and --spp must be at least 1\n";
+    return kUsageError;
+  }
+  r.strategy.kind = kStrategies.at(strategy);
+  r.strategy.sampler.backend = kBackends.at(backend);
+  r.strategy.sampler.cpu.threads = r.threads;
+  r.strategy.seed = r.seed;
+  options.out = out;
+  if (!stats.empty()) options.stats = stats;
+  if (!preview.empty()) options.preview = preview;
+  if (!variance.empty()) options.variance = variance;
+  options.progress = !quiet;
+  return options;
+}
+
+}  // namespace trs

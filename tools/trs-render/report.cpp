@@ -1,0 +1,146 @@
+#include "report.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace trs {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+struct SamplerTimes {
+  double mean_ms = 0.0;
+  double median_ms = 0.0;
+  double mean_lights = 0.0;
+  std::uint64_t exhausted = 0;
+};
+
+SamplerTimes sampler_times(const tracer::RenderResult& result) {
+  SamplerTimes t;
+  const auto& frames = result.light_frames;
+  if (frames.empty()) return t;
+  std::vector<double> ms;
+  for (const tracer::LightFrame& f : frames) {
+    ms.push_back(f.sampler_ms);
+    t.mean_ms += f.sampler_ms;
+    t.mean_lights += double(f.lights);
+    t.exhausted += f.exhausted;
+  }
+  t.mean_ms /= double(frames.size());
+  t.mean_lights /= double(frames.size());
+  std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+  t.median_ms = ms[ms.size() / 2];
+  return t;
+}
+
+double per_second(double count, double seconds) { return seconds > 0.0 ? count / seconds : 0.0; }
+
+}  // namespace
+
+ProgressBar::ProgressBar(bool enabled)
+    : enabled_(enabled && isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
+
+void ProgressBar::update(unsigned done, unsigned total) {
+  if (!enabled_) return;
+  constexpr int kWidth = 40;
+  const int filled = int(double(kWidth) * done / total);
+  const double elapsed = seconds_since(start_);
+  const double remaining = done > 0 ? elapsed * (total - done) / done : 0.0;
+  std::fprintf(stderr, "\r[%s%s] %u/%u spp  %.1f s, %.1f s left ",
+               std::string(std::size_t(filled), '#').c_str(),
+               std::string(std::size_t(kWidth - filled), '.').c_str(), done, total, elapsed,
+               remaining);
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+void ProgressBar::finish() {
+  if (drawn_) std::fputc('\n', stderr);
+  drawn_ = false;
+}
+
+double relative_variance(const tracer::RenderResult& result) {
+  const std::size_t pixels = result.luminance_variance.size();
+  if (pixels == 0 || result.frames < 2) return 0.0;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const float* c = &result.rgb[3 * i];
+    const double mean = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    sum += result.luminance_variance[i] / (mean * mean + 0.01);
+  }
+  return sum / double(pixels);
+}
+
+nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResult& result,
+                          double wall_seconds) {
+  const tracer::RenderSettings& r = options.render;
+  const SamplerTimes sampler = sampler_times(result);
+  nlohmann::json ms = nlohmann::json::array();
+  for (const tracer::LightFrame& f : result.light_frames) ms.push_back(f.sampler_ms);
+  return {
+      {"settings",
+       {{"scene", options.scene.string()},
+        {"out", options.out.string()},
+        {"width", r.width},
+        {"height", r.height},
+        {"spp", r.spp},
+        {"strategy", result.strategy},
+        {"lights", r.strategy.lights},
+        {"seed", r.seed},
+        {"max_depth", r.max_depth},
+        {"threads", r.threads},
+        {"backend", lightsampler::to_string(r.strategy.sampler.backend)}}},
+      {"frames", result.frames},
+      {"interrupted", result.interrupted},
+      {"light_sampler", result.light_device},
+      {"wall_seconds", wall_seconds},
+      {"setup_seconds", result.setup_seconds},
+      {"render_seconds", result.render_seconds},
+      {"paths", result.paths},
+      {"rays", result.rays},
+      {"paths_per_second", per_second(double(result.paths), result.render_seconds)},
+      {"rays_per_second", per_second(double(result.rays), result.render_seconds)},
+      {"sampler_ms_per_frame", sampler.mean_ms},
+      {"sampler_ms_median", sampler.median_ms},
+      {"sampler_ms", ms},
+      {"lights_per_frame", sampler.mean_lights},
+      {"exhausted_lights", sampler.exhausted},
+      {"invalid_paths", result.invalid_paths},
+      {"relative_variance", relative_variance(result)},
+  };
+}
+
+void print_summary(std::ostream& out, const RenderOptions& options,
+                   const tracer::RenderResult& result, double wall_seconds) {
+  const SamplerTimes sampler = sampler_times(result);
+  char line[256];
+  std::snprintf(line, sizeof line, "%s: %u x %u, %u spp%s, strategy %s\n",
+                options.out.string().c_str(), result.width, result.height, result.frames,
+                result.interrupted ? " (interrupted)" : "", result.strategy.c_str());
+  out << line;
+  std::snprintf(line, sizeof line,
+                "  %.2f s (set-up %.2f s, render %.2f s), %.3g paths/s, %.3g rays/s\n",
+                wall_seconds, result.setup_seconds, result.render_seconds,
+                per_second(double(result.paths), result.render_seconds),
+                per_second(double(result.rays), result.render_seconds));
+  out << line;
+  if (!result.light_device.empty()) {
+    std::snprintf(line, sizeof line,
+                  "  light sampler (%s): %.3g lights and %.2f ms per frame (median %.2f ms)\n",
+                  result.light_device.c_str(), sampler.mean_lights, sampler.mean_ms,
+                  sampler.median_ms);
+    out << line;
+  }
+  std::snprintf(line, sizeof line, "  relative variance per sample: %.4g\n",
+                relative_variance(result));
+  out << line;
+}
+
+}  // namespace trs

@@ -1,0 +1,43 @@
+#pragma once
+// Ray queries against the scene's triangles. The only interface to the ray-tracing kernel
+// (Embree 3); every Embree call lives in src/embree_geometry.cpp.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include "tracer/camera.h"
+#include "tracer/scene.h"
+
+namespace tracer {
+
+/// The closest hit of a ray: triangle, barycentric weights of its second and third vertices
+/// (as lightsampler's samples), and the distance along the unit direction.
+struct Hit {
+  std::uint32_t triangle;
+  float b1;
+  float b2;
+  float distance;
+};
+
+class Geometry {
+ public:
+  /// Builds the acceleration structure over a copy of `mesh`'s triangles. Throws
+  /// std::runtime_error if the kernel reports an error.
+  explicit Geometry(const Mesh& mesh);
+  ~Geometry();
+  Geometry(const Geometry&) = delete;
+  Geometry& operator=(const Geometry&) = delete;
+
+  /// Closest hit with distance in (0, max_distance).
+  std::optional<Hit> intersect(const Ray& ray, float max_distance) const;
+  /// Whether anything lies along the ray at distance in (0, max_distance).
+  bool occluded(const Ray& ray, float max_distance) const;
+
+ private:
+  struct Kernel;
+  void add_triangles(const Mesh& mesh);
+  std::unique_ptr<Kernel> kernel_;
+};
+
+}  // namespace tracer

@@ -1,0 +1,50 @@
+#pragma once
+// Unidirectional path tracing with next-event estimation: at every surface point one light
+// sample from the strategy and one BSDF sample, combined by multiple importance sampling with
+// the power heuristic. Lights are the scene's emissive triangles; there is no environment.
+
+#include <glm/glm.hpp>
+
+#include "tracer/bsdf.h"
+#include "tracer/camera.h"
+#include "tracer/emitters.h"
+#include "tracer/geometry.h"
+#include "tracer/light_strategy.h"
+#include "tracer/path_random.h"
+#include "tracer/scene.h"
+
+namespace tracer {
+
+/// Power heuristic (beta = 2) weight of a technique of density `a` against one of density `b`.
+inline float power_heuristic(float a, float b) {
+  const float a2 = a * a, b2 = b * b;
+  return a2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+/// An area density at a light point seen from a shading point, as a solid-angle density.
+float solid_angle_density(float area_density, float distance, float cos_at_light);
+
+class PathTracer {
+ public:
+  /// `max_depth`: most surface interactions a path scatters at; 0 shows emitters only, 1 is
+  /// direct lighting.
+  PathTracer(const Scene& scene, const Geometry& geometry, const Emitters& emitters,
+             const LightStrategy& strategy, unsigned max_depth);
+
+  /// Radiance arriving along `ray` (one estimate); adds the rays it traces to `rays`.
+  glm::vec3 radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const;
+
+ private:
+  struct Vertex;
+  glm::vec3 emitted(const Vertex& vertex, float bsdf_pdf, bool camera_ray) const;
+  glm::vec3 light_sample(const Vertex& vertex, const Bsdf& bsdf, PathRandom& random,
+                         std::uint64_t& rays) const;
+
+  const Scene& scene_;
+  const Geometry& geometry_;
+  const Emitters& emitters_;
+  const LightStrategy& strategy_;
+  unsigned max_depth_;
+};
+
+}  // namespace tracer

@@ -1,0 +1,63 @@
+#pragma once
+// Progressive rendering: frame after frame, one path per pixel each, averaged. With `trs` every
+// frame draws a fresh set of point lights first.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tracer/light_strategy.h"
+#include "tracer/scene.h"
+
+namespace tracer {
+
+struct RenderSettings {
+  unsigned width = 640;
+  unsigned height = 360;
+  unsigned spp = 16;        ///< frames
+  unsigned max_depth = 4;   ///< see PathTracer
+  std::uint64_t seed = 0;
+  unsigned threads = 0;     ///< paths and CPU light sampler; 0: every hardware thread
+  StrategyOptions strategy;
+};
+
+struct RenderResult {
+  unsigned width = 0;
+  unsigned height = 0;
+  unsigned frames = 0;                ///< frames averaged (samples per pixel)
+  std::vector<float> rgb;             ///< mean radiance, width * height * 3, row 0 at the top
+  /// Per-pixel variance of one path's luminance over the frames (unbiased; zero below two
+  /// frames): the noise of one sample per pixel, comparable between strategies.
+  std::vector<float> luminance_variance;
+  std::vector<LightFrame> light_frames;  ///< per frame
+  double setup_seconds = 0.0;         ///< scene acceleration structure, emitters, strategy
+  double render_seconds = 0.0;        ///< the frames, light sampling included
+  std::uint64_t paths = 0;
+  std::uint64_t rays = 0;             ///< closest-hit and shadow rays traced
+  std::uint64_t invalid_paths = 0;    ///< paths with a NaN or infinite estimate, counted as black
+  bool interrupted = false;           ///< stopped early by the cancel flag
+  std::string strategy;
+  std::string light_device;           ///< the light sampler's backend and device, if any
+};
+
+class Renderer {
+ public:
+  /// Builds the ray-tracing structure, the emitters and the strategy. Throws
+  /// std::invalid_argument on a scene that cannot be rendered with these settings.
+  Renderer(const Scene& scene, const RenderSettings& settings);
+  ~Renderer();
+
+  /// Renders settings.spp frames. `progress(done, total)` after each frame. When `cancel`
+  /// becomes true, the frame under way is dropped and the frames done so far are returned.
+  RenderResult render(const std::function<void(unsigned, unsigned)>& progress,
+                      const std::atomic<bool>& cancel);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace tracer

@@ -1,0 +1,121 @@
+#include "tracer/emitters.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace tracer {
+namespace {
+
+/// Rec. 709 luminance of linear RGB: positive weights, so any non-zero radiance has non-zero
+/// density.
+float luminance(glm::vec3 rgb) { return 0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b; }
+
+constexpr std::uint32_t kNotLight = std::numeric_limits<std::uint32_t>::max();
+
+lightsampler::Addressing addressing(const Texture& texture) {
+  if (texture.wrap_s == texture.wrap_t && texture.wrap_s != Wrap::mirrored_repeat)
+    return texture.wrap_s == Wrap::repeat ? lightsampler::Addressing::wrap
+                                          : lightsampler::Addressing::clamp;
+  throw std::invalid_argument(
+      "emissive texture " + texture.name +
+      ": the light sampler reads repeat or clamp-to-edge, the same on both axes");
+}
+
+}  // namespace
+
+Emitters::Emitters(const Scene& scene, unsigned threads) {
+  std::vector<std::uint32_t> emission_of_material(scene.materials.size(), kNotLight);
+  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+    if (!scene.materials[m].emissive()) continue;
+    emission_of_material[m] = std::uint32_t(emissions_.size());
+    add_emission(scene, scene.materials[m]);
+  }
+  lights_of_scene_.assign(scene.mesh.triangle_count(), kNotLight);
+  for (std::uint32_t t = 0; t < scene.mesh.triangle_count(); ++t) {
+    const std::uint32_t emission = emission_of_material[scene.mesh.materials[t]];
+    if (emission != kNotLight) add_light(scene, t, emission);
+  }
+  for (const Emission& e : emissions_)
+    map_views_.push_back({e.luminance, e.width, e.height, e.addressing, e.strength});
+  sampler_ = lightsampler::make_cpu_sampler(mesh(), map_views_, {.threads = threads});
+  // The counting pass alone gives every light's integral.
+  lightsampler::Frame frame;
+  lightsampler::FrameRequest request;
+  request.realize = false;
+  sampler_->generate(request, frame);
+  light_density_.assign(frame.expected_counts.span().begin(), frame.expected_counts.span().end());
+  total_density_ = frame.expected_total;
+}
+
+Emitters::~Emitters() = default;
+
+void Emitters::add_emission(const Scene& scene, const Material& material) {
+  Emission e;
+  e.strength = material.emissive_strength;
+  e.double_sided = material.double_sided;
+  if (material.emissive_texture == kNoTexture) {
+    e.radiance = {material.emissive_factor};
+  } else {
+    const Texture& texture = scene.textures.at(std::size_t(material.emissive_texture));
+    e.width = texture.width;
+    e.height = texture.height;
+    e.addressing = addressing(texture);
+    e.radiance.reserve(texture.texels.size());
+    for (const glm::vec3& texel : texture.texels)
+      e.radiance.push_back(glm::max(texel * material.emissive_factor, glm::vec3(0.0f)));
+  }
+  e.luminance.reserve(e.radiance.size());
+  for (const glm::vec3& radiance : e.radiance) e.luminance.push_back(luminance(radiance));
+  emissions_.push_back(std::move(e));
+}
+
+void Emitters::add_light(const Scene& scene, std::uint32_t triangle, std::uint32_t emission) {
+  lights_of_scene_[triangle] = count();
+  scene_triangles_.push_back(triangle);
+  glm::vec3 p[3];
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t v = scene.mesh.indices[3 * triangle + k];
+    p[k] = scene.mesh.positions[v];
+    const glm::vec2 uv = scene.mesh.uvs.empty() ? glm::vec2(0.0f) : scene.mesh.uvs[v];
+    indices_.push_back(std::uint32_t(positions_.size() / 3));
+    positions_.insert(positions_.end(), {p[k].x, p[k].y, p[k].z});
+    uvs_.insert(uvs_.end(), {uv.x, uv.y});
+  }
+  light_maps_.push_back(emission);
+  const glm::vec3 n = glm::cross(p[1] - p[0], p[2] - p[0]);
+  const float length = glm::length(n);
+  areas_.push_back(0.5f * length);
+  normals_.push_back(length > 0.0f ? n / length : glm::vec3(0.0f));
+}
+
+std::optional<std::uint32_t> Emitters::light_of(std::uint32_t scene_triangle) const {
+  const std::uint32_t light = lights_of_scene_[scene_triangle];
+  if (light == kNotLight) return std::nullopt;
+  return light;
+}
+
+lightsampler::MeshView Emitters::mesh() const {
+  return {positions_, uvs_, indices_, light_maps_};
+}
+
+glm::vec3 Emitters::radiance(std::uint32_t light, float b1, float b2, glm::vec3 w) const {
+  const Emission& e = emissions_[light_maps_[light]];
+  if (!e.double_sided && glm::dot(w, normals_[light]) <= 0.0f) return glm::vec3(0.0f);
+  const std::optional<lightsampler::Texel> texel = sampler_->texel(light, b1, b2);
+  if (!texel) return glm::vec3(0.0f);
+  return e.strength * e.radiance[std::size_t(texel->y) * e.width + texel->x];
+}
+
+float Emitters::density(std::uint32_t light, float b1, float b2) const {
+  return sampler_->density(light, b1, b2);
+}
+
+glm::vec3 Emitters::position(std::uint32_t light, float b1, float b2) const {
+  const float* p = &positions_[9 * std::size_t(light)];
+  const glm::vec3 p0(p[0], p[1], p[2]), p1(p[3], p[4], p[5]), p2(p[6], p[7], p[8]);
+  return (1.0f - b1 - b2) * p0 + b1 * p1 + b2 * p2;
+}
+
+}  // namespace tracer

@@ -1,0 +1,164 @@
+#include "gltf_materials.h"
+
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <string>
+#include <utility>
+
+#include "common/color.h"
+#include "common/file_error.h"
+#include "common/image_output.h"
+
+namespace tracer {
+namespace {
+
+using trs::gltf::Document;
+
+/// Colour is sRGB-encoded in integer images; data textures hold their values as they are.
+enum class Use { colour, data };
+
+std::string label(const char* kind, std::size_t index, const std::string& name) {
+  return std::string(kind) + " " + std::to_string(index) + (name.empty() ? "" : " '" + name + "'");
+}
+
+Wrap wrap_mode(int mode, const Document& document, const std::string& what) {
+  switch (mode) {
+    case TINYGLTF_TEXTURE_WRAP_REPEAT:
+      return Wrap::repeat;
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+      return Wrap::clamp;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+      return Wrap::mirrored_repeat;
+    default:
+      document.fail(what + ": unknown wrap mode " + std::to_string(mode));
+  }
+}
+
+/// The image of glTF texture `index`, decoded to linear RGB for `use`, with its sampler's modes.
+Texture read_texture(const Document& document, int index, Use use) {
+  const tinygltf::Model& model = document.model();
+  const std::string what = "texture " + std::to_string(index);
+  if (index < 0 || std::size_t(index) >= model.textures.size())
+    document.fail(what + " does not exist");
+  const tinygltf::Texture& source = model.textures[std::size_t(index)];
+  if (source.source < 0 || std::size_t(source.source) >= model.images.size()) {
+    document.fail(what +
+                  " has no image in a format glTF defines (extensions such as "
+                  "KHR_texture_basisu are not supported)");
+  }
+  const tinygltf::Image& image = model.images[std::size_t(source.source)];
+
+  // Problems are the image file's where it has one, else the document's about this image.
+  Texture texture;
+  std::filesystem::path file = document.file();
+  std::string prefix;
+  trs::Image pixels;
+  if (!image.uri.empty()) {
+    file = document.resolve_uri(image.uri);
+    texture.name = image.uri;
+    pixels = trs::read_image(file);
+  } else {
+    const std::string name = label("image", std::size_t(source.source), image.name);
+    texture.name = image.name.empty() ? name : image.name;
+    const std::string format = image.mimeType.substr(image.mimeType.find('/') + 1);
+    pixels = trs::read_image(image.image, format, file, name);
+    prefix = name + ": ";
+  }
+  if (use == Use::colour && pixels.integer) trs::srgb_to_linear(pixels.rgb);
+  for (std::size_t i = 0; i < pixels.rgb.size(); ++i) {
+    if (std::isfinite(pixels.rgb[i])) continue;
+    const std::size_t texel = i / 3;
+    throw trs::FileError(file, prefix + "texel (x " + std::to_string(texel % pixels.width) +
+                                   ", y " + std::to_string(texel / pixels.width) +
+                                   " from the top) is not finite");
+  }
+  texture.width = pixels.width;
+  texture.height = pixels.height;
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+  texture.texels.resize(pixels.rgb.size() / 3);
+  std::memcpy(texture.texels.data(), pixels.rgb.data(), pixels.rgb.size() * sizeof(float));
+
+  if (source.sampler >= 0) {
+    if (std::size_t(source.sampler) >= model.samplers.size())
+      document.fail(what + ": sampler " + std::to_string(source.sampler) + " does not exist");
+    const tinygltf::Sampler& sampler = model.samplers[std::size_t(source.sampler)];
+    texture.wrap_s = wrap_mode(sampler.wrapS, document, what);
+    texture.wrap_t = wrap_mode(sampler.wrapT, document, what);
+    texture.nearest = sampler.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+  }
+  return texture;
+}
+
+/// Scene textures by glTF texture and use, each decoded once however many materials share it.
+class Textures {
+ public:
+  Textures(const Document& document, std::vector<Texture>& textures)
+      : document_(document), textures_(textures) {}
+
+  std::int32_t get(const tinygltf::TextureInfo& info, Use use, const std::string& what) {
+    if (info.index < 0) return kNoTexture;
+    if (info.texCoord != 0) {
+      document_.fail(what + " uses TEXCOORD_" + std::to_string(info.texCoord) +
+                     "; only TEXCOORD_0 is supported");
+    }
+    const auto [entry, added] = loaded_.try_emplace({info.index, use}, kNoTexture);
+    if (added) {
+      textures_.push_back(read_texture(document_, info.index, use));
+      entry->second = static_cast<std::int32_t>(textures_.size() - 1);
+    }
+    return entry->second;
+  }
+
+ private:
+  const Document& document_;
+  std::vector<Texture>& textures_;
+  std::map<std::pair<int, Use>, std::int32_t> loaded_;
+};
+
+glm::vec3 rgb(const std::vector<double>& factor, const Document& document,
+              const std::string& what) {
+  if (factor.size() < 3) document.fail(what + " has fewer than 3 components");
+  return {float(factor[0]), float(factor[1]), float(factor[2])};
+}
+
+float emissive_strength(const tinygltf::Material& material, const Document& document,
+                        const std::string& what) {
+  const auto extension = material.extensions.find("KHR_materials_emissive_strength");
+  if (extension == material.extensions.end()) return 1.0f;
+  const tinygltf::Value& strength = extension->second.Get("emissiveStrength");
+  if (!strength.IsNumber()) return 1.0f;  // the extension's default
+  const double value = strength.GetNumberAsDouble();
+  if (!(value >= 0.0) || !std::isfinite(value))
+    document.fail(what + ": emissiveStrength must be finite and non-negative");
+  return float(value);
+}
+
+}  // namespace
+
+void read_materials(const Document& document, Scene& scene) {
+  Textures textures(document, scene.textures);
+  const auto& materials = document.model().materials;
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    const tinygltf::Material& source = materials[m];
+    const tinygltf::PbrMetallicRoughness& pbr = source.pbrMetallicRoughness;
+    const std::string what = label("material", m, source.name);
+    Material material;
+    material.name = source.name;
+    material.base_color = rgb(pbr.baseColorFactor, document, what + " baseColorFactor");
+    material.base_color_texture =
+        textures.get(pbr.baseColorTexture, Use::colour, what + " baseColorTexture");
+    material.metallic = float(pbr.metallicFactor);
+    material.roughness = float(pbr.roughnessFactor);
+    material.metallic_roughness_texture =
+        textures.get(pbr.metallicRoughnessTexture, Use::data, what + " metallicRoughnessTexture");
+    material.emissive_factor = rgb(source.emissiveFactor, document, what + " emissiveFactor");
+    material.emissive_texture =
+        textures.get(source.emissiveTexture, Use::colour, what + " emissiveTexture");
+    material.emissive_strength = emissive_strength(source, document, what);
+    material.double_sided = source.doubleSided;
+    scene.materials.push_back(std::move(material));
+  }
+}
+
+}  // namespace tracer

@@ -1,0 +1,170 @@
+#include "tracer/gltf_scene.h"
+
+#include <cmath>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/gltf_document.h"
+#include "common/input_file.h"
+#include "gltf_materials.h"
+
+namespace tracer {
+namespace {
+
+using trs::gltf::Document;
+
+/// One primitive's vertices in world space, before they join the scene's mesh.
+struct Vertices {
+  std::vector<glm::vec3> positions;
+  std::optional<std::vector<glm::vec3>> normals;
+  std::vector<glm::vec2> uvs;
+  std::vector<std::uint32_t> corners;  ///< 3 per triangle, into the vectors above
+};
+
+template <class Vector>
+void check_finite(const std::vector<Vector>& values, const Document& document,
+                  const std::string& what) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    for (int k = 0; k < Vector::length(); ++k) {
+      if (!std::isfinite(values[i][k]))
+        document.fail(what + " " + std::to_string(i) + " is not finite");
+    }
+  }
+}
+
+Vertices world_vertices(const Document& document, const tinygltf::Primitive& primitive,
+                        const glm::dmat4& world, const std::string& what) {
+  Vertices v;
+  v.positions = document.positions(primitive, what);
+  const std::size_t count = v.positions.size();
+  v.normals = document.vec3_attribute(primitive, "NORMAL", count, what);
+  v.uvs = document.vec2_attribute(primitive, "TEXCOORD_0", count, what)
+              .value_or(std::vector<glm::vec2>(count, glm::vec2(0.0f)));
+  v.corners = document.triangles(primitive, count, what);
+  check_finite(v.positions, document, what + " POSITION");
+  check_finite(v.uvs, document, what + " TEXCOORD_0");
+
+  for (glm::vec3& p : v.positions) p = glm::vec3(world * glm::dvec4(p, 1.0));
+  const glm::dmat3 linear(world);
+  if (v.normals) {
+    check_finite(*v.normals, document, what + " NORMAL");
+    const glm::dmat3 normal_matrix = glm::inverseTranspose(linear);  // linear is invertible
+    for (std::size_t i = 0; i < v.normals->size(); ++i) {
+      const glm::dvec3 normal = normal_matrix * glm::dvec3((*v.normals)[i]);
+      if (glm::length(normal) == 0.0)
+        document.fail(what + " NORMAL " + std::to_string(i) + " is zero");
+      (*v.normals)[i] = glm::vec3(glm::normalize(normal));
+    }
+  }
+  if (glm::determinant(linear) < 0.0) {
+    for (std::size_t t = 0; t < v.corners.size(); t += 3)
+      std::swap(v.corners[t + 1], v.corners[t + 2]);
+  }
+  return v;
+}
+
+/// Gives each triangle vertices of its own carrying its face normal: flat shading for a
+/// primitive without normals in a mesh that has them.
+Vertices with_face_normals(const Vertices& shared) {
+  Vertices flat;
+  flat.normals.emplace();
+  for (std::size_t t = 0; t < shared.corners.size(); t += 3) {
+    const glm::vec3 a = shared.positions[shared.corners[t]];
+    const glm::vec3 b = shared.positions[shared.corners[t + 1]];
+    const glm::vec3 c = shared.positions[shared.corners[t + 2]];
+    const glm::vec3 cross = glm::cross(b - a, c - a);
+    const float length = glm::length(cross);
+    // A degenerate triangle is never hit; any unit vector will do.
+    const glm::vec3 normal = length > 0.0f ? cross / length : glm::vec3(0.0f, 0.0f, 1.0f);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t corner = shared.corners[t + k];
+      flat.corners.push_back(static_cast<std::uint32_t>(flat.positions.size()));
+      flat.positions.push_back(shared.positions[corner]);
+      flat.uvs.push_back(shared.uvs[corner]);
+      flat.normals->push_back(normal);
+    }
+  }
+  return flat;
+}
+
+void read_geometry(const Document& document, Scene& scene) {
+  bool any_normals = false;
+  document.for_each_triangle_primitive(
+      [&](const tinygltf::Primitive& primitive, const glm::dmat4&, const std::string&) {
+        any_normals = any_normals || primitive.attributes.contains("NORMAL");
+      });
+  const std::size_t file_materials = document.model().materials.size();
+  std::optional<std::uint32_t> default_material;
+  Mesh& mesh = scene.mesh;
+  document.for_each_triangle_primitive(
+      [&](const tinygltf::Primitive& primitive, const glm::dmat4& world, const std::string& what) {
+        // A node scaled to zero (a common way of hiding one) leaves nothing to render.
+        if (glm::determinant(glm::dmat3(world)) == 0.0) return;
+        if (primitive.material >= 0 && std::size_t(primitive.material) >= file_materials) {
+          document.fail(what + " uses material " + std::to_string(primitive.material) +
+                        ", which does not exist");
+        }
+        if (primitive.material < 0 && !default_material) {
+          default_material = static_cast<std::uint32_t>(scene.materials.size());
+          scene.materials.push_back(Material{.name = "default"});
+        }
+        const auto material =
+            primitive.material >= 0 ? std::uint32_t(primitive.material) : *default_material;
+
+        Vertices v = world_vertices(document, primitive, world, what);
+        if (any_normals && !v.normals) v = with_face_normals(v);
+        const std::uint32_t base = document.vertex_base(mesh.positions.size(), v.positions.size());
+        mesh.positions.insert(mesh.positions.end(), v.positions.begin(), v.positions.end());
+        if (v.normals)
+          mesh.normals.insert(mesh.normals.end(), v.normals->begin(), v.normals->end());
+        mesh.uvs.insert(mesh.uvs.end(), v.uvs.begin(), v.uvs.end());
+        for (const std::uint32_t corner : v.corners) mesh.indices.push_back(base + corner);
+        mesh.materials.insert(mesh.materials.end(), v.corners.size() / 3, material);
+      });
+}
+
+std::optional<Camera> first_camera(const Document& document) {
+  const auto& cameras = document.model().cameras;
+  std::optional<Camera> camera;
+  document.for_each_node([&](int index, const tinygltf::Node& node, const glm::dmat4& world) {
+    if (camera || node.camera < 0) return;
+    const std::string what =
+        "camera " + std::to_string(node.camera) + " (node " + std::to_string(index) + ")";
+    if (std::size_t(node.camera) >= cameras.size()) document.fail(what + " does not exist");
+    const tinygltf::Camera& source = cameras[std::size_t(node.camera)];
+    if (source.type == "orthographic")
+      document.fail(what + ": orthographic cameras are not supported");
+    const double yfov = source.perspective.yfov;
+    if (source.type != "perspective") document.fail(what + ": unknown type '" + source.type + "'");
+    if (!(yfov > 0.0 && yfov < std::numbers::pi))
+      document.fail(what + ": yfov must lie between 0 and pi radians");
+    // glTF cameras look down their local -Z with +Y up.
+    const glm::dvec3 forward = glm::normalize(glm::dvec3(world * glm::dvec4(0, 0, -1, 0)));
+    const glm::dvec3 up = glm::dvec3(world * glm::dvec4(0, 1, 0, 0));
+    camera = Camera{.position = glm::vec3(world[3]),
+                    .forward = glm::vec3(forward),
+                    .up = glm::vec3(glm::normalize(up - glm::dot(up, forward) * forward)),
+                    .yfov = float(yfov),
+                    .aspect = float(source.perspective.aspectRatio)};
+  });
+  return camera;
+}
+
+}  // namespace
+
+Scene load_gltf_scene(const std::filesystem::path& file) {
+  trs::check_input_file(file);
+  const Document document(file);
+  Scene scene;
+  scene.file = file;
+  read_materials(document, scene);
+  read_geometry(document, scene);
+  scene.camera = first_camera(document);
+  return scene;
+}
+
+}  // namespace tracer

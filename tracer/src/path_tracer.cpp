@@ -1,0 +1,129 @@
+#include "tracer/path_tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "surface.h"
+
+namespace tracer {
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+/// A ray leaving `p` along `d`, its origin pushed off the surface to the side `d` goes, by an
+/// amount that grows with the coordinates (float spacing grows with them).
+glm::vec3 offset(const glm::vec3& p, const glm::vec3& geometric_normal, const glm::vec3& d) {
+  const float scale = std::max({1.0f, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  const float side = glm::dot(d, geometric_normal) >= 0.0f ? 1.0f : -1.0f;
+  return p + (side * 1e-4f * scale) * geometric_normal;
+}
+
+Ray spawn(const glm::vec3& p, const glm::vec3& geometric_normal, const glm::vec3& d) {
+  return {offset(p, geometric_normal, d), d};
+}
+
+/// Whether the segment between two surface points is blocked, both ends pushed off their
+/// surfaces towards each other so that neither surface blocks it.
+bool blocked(const Geometry& geometry, const glm::vec3& from, const glm::vec3& from_normal,
+             const glm::vec3& to, const glm::vec3& to_normal) {
+  const glm::vec3 origin = offset(from, from_normal, to - from);
+  const glm::vec3 target = offset(to, to_normal, from - to);
+  const glm::vec3 d = target - origin;
+  const float length = glm::length(d);
+  return length > 0.0f && geometry.occluded({origin, d / length}, length);
+}
+
+bool is_black(const glm::vec3& c) { return c.r <= 0.0f && c.g <= 0.0f && c.b <= 0.0f; }
+
+}  // namespace
+
+float solid_angle_density(float area_density, float distance, float cos_at_light) {
+  const float c = std::abs(cos_at_light);
+  return c > 0.0f ? area_density * distance * distance / c : 0.0f;
+}
+
+struct PathTracer::Vertex {
+  Hit hit;
+  SurfacePoint point;
+  glm::vec3 wo;  ///< towards the previous vertex
+};
+
+PathTracer::PathTracer(const Scene& scene, const Geometry& geometry, const Emitters& emitters,
+                       const LightStrategy& strategy, unsigned max_depth)
+    : scene_(scene),
+      geometry_(geometry),
+      emitters_(emitters),
+      strategy_(strategy),
+      max_depth_(max_depth) {}
+
+glm::vec3 PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const {
+  glm::vec3 sum(0.0f), throughput(1.0f);
+  float bsdf_pdf = 0.0f;  // of the direction that reached this vertex; unused for camera rays
+  for (unsigned depth = 0;; ++depth) {
+    const std::optional<Hit> hit = geometry_.intersect(ray, kInfinity);
+    ++rays;
+    if (!hit) break;
+    const Vertex vertex{*hit, surface_point(scene_, *hit), -ray.direction};
+    sum += throughput * emitted(vertex, bsdf_pdf, depth == 0);
+    if (depth == max_depth_) break;
+
+    const Material& material = scene_.materials[vertex.point.material];
+    const Bsdf bsdf(surface_params(scene_, material, vertex.point.uv), vertex.point.shading_normal);
+    sum += throughput * light_sample(vertex, bsdf, random, rays);
+
+    const auto u = random.floats();
+    const std::optional<BsdfSample> s = bsdf.sample(vertex.wo, {u[0], u[1], u[2]});
+    if (!s) break;
+    // Shading normals can send a direction through the surface; such paths carry nothing.
+    const glm::vec3& ng = vertex.point.geometric_normal;
+    if (glm::dot(s->wi, ng) * glm::dot(vertex.wo, ng) <= 0.0f) break;
+    throughput *= s->weight;
+    if (is_black(throughput)) break;
+    bsdf_pdf = s->pdf;
+    ray = spawn(vertex.point.position, ng, s->wi);
+  }
+  return sum;
+}
+
+/// Emission seen at a vertex, weighed against the light sample that could have found it.
+glm::vec3 PathTracer::emitted(const Vertex& vertex, float bsdf_pdf, bool camera_ray) const {
+  const std::optional<std::uint32_t> light = emitters_.light_of(vertex.hit.triangle);
+  if (!light) return glm::vec3(0.0f);
+  const glm::vec3 le = emitters_.radiance(*light, vertex.hit.b1, vertex.hit.b2, vertex.wo);
+  if (camera_ray || is_black(le)) return le;
+  const float light_pdf = solid_angle_density(
+      strategy_.pdf(*light, vertex.hit.b1, vertex.hit.b2), vertex.hit.distance,
+      glm::dot(vertex.wo, emitters_.normal(*light)));
+  return le * power_heuristic(bsdf_pdf, light_pdf);
+}
+
+/// Next-event estimation: one point from the strategy, weighed against BSDF sampling.
+glm::vec3 PathTracer::light_sample(const Vertex& vertex, const Bsdf& bsdf, PathRandom& random,
+                                   std::uint64_t& rays) const {
+  const auto words = random.words();
+  const std::optional<LightSample> s = strategy_.sample({words[0], words[1], words[2]});
+  if (!s) return glm::vec3(0.0f);
+  const glm::vec3 to_light = s->position - vertex.point.position;
+  const float distance = glm::length(to_light);
+  if (!(distance > 0.0f)) return glm::vec3(0.0f);
+  const glm::vec3 wi = to_light / distance;
+  const glm::vec3 le = emitters_.radiance(s->light, s->b1, s->b2, -wi);
+  if (is_black(le)) return glm::vec3(0.0f);
+  const glm::vec3& ng = vertex.point.geometric_normal;
+  if (glm::dot(wi, ng) * glm::dot(vertex.wo, ng) <= 0.0f) return glm::vec3(0.0f);
+
+  const glm::vec3 f = bsdf.eval(vertex.wo, wi);
+  if (is_black(f)) return glm::vec3(0.0f);
+  const float cos_light = glm::dot(-wi, emitters_.normal(s->light));
+  const float pdf = solid_angle_density(s->pdf, distance, cos_light);
+  if (!(pdf > 0.0f)) return glm::vec3(0.0f);
+  ++rays;
+  if (blocked(geometry_, vertex.point.position, ng, s->position, emitters_.normal(s->light)))
+    return glm::vec3(0.0f);
+  const float weight =
+      power_heuristic(solid_angle_density(s->mis_pdf, distance, cos_light), bsdf.pdf(vertex.wo, wi));
+  return f * le * (weight / pdf);
+}
+
+}  // namespace tracer

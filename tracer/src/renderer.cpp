@@ -1,0 +1,160 @@
+#include "tracer/renderer.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/combinable.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "tracer/camera.h"
+#include "tracer/emitters.h"
+#include "tracer/geometry.h"
+#include "tracer/path_tracer.h"
+
+namespace tracer {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+Camera scene_camera(const Scene& scene) {
+  if (scene.camera) return *scene.camera;
+  glm::vec3 lower(INFINITY), upper(-INFINITY);
+  for (const glm::vec3& p : scene.mesh.positions) {
+    lower = glm::min(lower, p);
+    upper = glm::max(upper, p);
+  }
+  return framing_camera(lower, upper);
+}
+
+float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+
+/// Sums over frames per pixel, in double: thousands of frames of float noise.
+struct Accumulator {
+  std::vector<double> rgb;
+  std::vector<double> luminance_squared;
+
+  explicit Accumulator(std::size_t pixels) : rgb(3 * pixels, 0.0), luminance_squared(pixels, 0.0) {}
+
+  void add(const std::vector<glm::vec3>& frame) {
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+      for (int c = 0; c < 3; ++c) rgb[3 * i + c] += frame[i][c];
+      const double y = luminance(frame[i]);
+      luminance_squared[i] += y * y;
+    }
+  }
+
+  void finish(unsigned frames, RenderResult& result) const {
+    const std::size_t pixels = luminance_squared.size();
+    result.rgb.assign(3 * pixels, 0.0f);
+    result.luminance_variance.assign(pixels, 0.0f);
+    if (frames == 0) return;
+    for (std::size_t i = 0; i < 3 * pixels; ++i) result.rgb[i] = float(rgb[i] / frames);
+    if (frames < 2) return;
+    for (std::size_t i = 0; i < pixels; ++i) {
+      const double mean = (0.2126 * rgb[3 * i] + 0.7152 * rgb[3 * i + 1] + 0.0722 * rgb[3 * i + 2]) / frames;
+      const double variance = (luminance_squared[i] / frames - mean * mean) * frames / (frames - 1);
+      result.luminance_variance[i] = float(std::max(variance, 0.0));
+    }
+  }
+};
+
+}  // namespace
+
+struct Renderer::State {
+  const Scene& scene;
+  RenderSettings settings;
+  double setup_seconds = 0.0;
+  Geometry geometry;
+  Emitters emitters;
+  std::unique_ptr<LightStrategy> strategy;
+  PinholeCamera camera;
+
+  State(const Scene& s, const RenderSettings& r)
+      : scene(s),
+        settings(r),
+        geometry(s.mesh),
+        emitters(s, r.threads),
+        strategy(make_light_strategy(emitters, r.strategy)),
+        camera(scene_camera(s), r.width, r.height) {}
+};
+
+Renderer::Renderer(const Scene& scene, const RenderSettings& settings) {
+  if (settings.width == 0 || settings.height == 0)
+    throw std::invalid_argument("the image needs a width and a height of at least 1");
+  if (std::uint64_t(settings.width) * settings.height >= (1ull << 32))
+    throw std::invalid_argument("the image has 2^32 pixels or more");
+  const auto start = Clock::now();
+  state_ = std::make_unique<State>(scene, settings);
+  state_->setup_seconds = seconds_since(start);
+}
+
+Renderer::~Renderer() = default;
+
+RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& progress,
+                              const std::atomic<bool>& cancel) {
+  State& s = *state_;
+  const RenderSettings& settings = s.settings;
+  std::optional<tbb::global_control> limit;
+  if (settings.threads > 0)
+    limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
+  const std::size_t pixels = std::size_t(settings.width) * settings.height;
+  const PathTracer tracer(s.scene, s.geometry, s.emitters, *s.strategy, settings.max_depth);
+  const lightsampler::PhiloxKey key = path_key(settings.seed);
+
+  RenderResult result;
+  result.width = settings.width;
+  result.height = settings.height;
+  result.setup_seconds = s.setup_seconds;
+  result.strategy = s.strategy->name();
+  result.light_device = s.strategy->device();
+  Accumulator sums(pixels);
+  std::vector<glm::vec3> frame(pixels);
+  tbb::combinable<std::uint64_t> rays, invalid;
+  const auto start = Clock::now();
+
+  for (unsigned f = 0; f < settings.spp && !cancel; ++f) {
+    s.strategy->begin_frame(f);
+    tbb::parallel_for(
+        tbb::blocked_range2d<unsigned>(0, settings.height, 8, 0, settings.width, 8),
+        [&](const tbb::blocked_range2d<unsigned>& tile) {
+          if (cancel) return;
+          std::uint64_t& tile_rays = rays.local();
+          for (unsigned y = tile.rows().begin(); y != tile.rows().end(); ++y) {
+            for (unsigned x = tile.cols().begin(); x != tile.cols().end(); ++x) {
+              const std::uint32_t pixel = y * settings.width + x;
+              PathRandom random(key, pixel, f);
+              const auto jitter = random.floats();
+              const Ray ray = s.camera.ray(float(x) + jitter[0], float(y) + jitter[1]);
+              glm::vec3 l = tracer.radiance(ray, random, tile_rays);
+              if (!std::isfinite(l.r + l.g + l.b)) {
+                ++invalid.local();
+                l = glm::vec3(0.0f);
+              }
+              frame[pixel] = l;
+            }
+          }
+        });
+    if (cancel) break;  // a partial frame would bias the average
+    sums.add(frame);
+    result.light_frames.push_back(s.strategy->last_frame());
+    result.frames = f + 1;
+    if (progress) progress(result.frames, settings.spp);
+  }
+
+  result.render_seconds = seconds_since(start);
+  result.interrupted = result.frames < settings.spp;
+  result.paths = std::uint64_t(result.frames) * pixels;
+  result.rays = rays.combine(std::plus<>());
+  result.invalid_paths = invalid.combine(std::plus<>());
+  sums.finish(result.frames, result);
+  return result;
+}
+
+}  // namespace tracer

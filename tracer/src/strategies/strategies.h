@@ -1,0 +1,15 @@
+#pragma once
+// The strategies behind make_light_strategy, one file each.
+
+#include <memory>
+
+#include "tracer/light_strategy.h"
+
+namespace tracer {
+
+std::unique_ptr<LightStrategy> make_uniform_strategy(const Emitters& emitters);
+std::unique_ptr<LightStrategy> make_power_strategy(const Emitters& emitters);
+std::unique_ptr<LightStrategy> make_trs_strategy(const Emitters& emitters,
+                                                 const StrategyOptions& options);
+
+}  // namespace tracer

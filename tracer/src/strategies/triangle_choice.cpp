@@ -1,0 +1,38 @@
+#include "strategies/triangle_choice.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <lightsampler/random.h>
+#include <lightsampler/triangle_map.h>
+
+namespace tracer {
+
+TriangleChoice::TriangleChoice(const Emitters& emitters, std::span<const double> weights)
+    : emitters_(emitters), cdf_(weights.size()), area_density_(weights.size(), 0.0f) {
+  double total = 0.0;
+  for (std::size_t i = 0; i < weights.size(); ++i) cdf_[i] = total += weights[i];
+  if (!(total > 0.0)) throw std::invalid_argument("the lights have no area or emit nothing");
+  for (std::size_t i = 0; i < weights.size(); ++i) {
+    cdf_[i] /= total;
+    const float area = emitters.area(std::uint32_t(i));
+    if (area > 0.0f) area_density_[i] = float(weights[i] / total / area);
+  }
+  cdf_.back() = 1.0;
+}
+
+std::optional<LightSample> TriangleChoice::sample(
+    const std::array<std::uint32_t, 3>& random) const {
+  const double u = lightsampler::uniform_double(random[0]);
+  // The first light whose CDF exceeds u: zero-weight lights are never chosen.
+  const auto light = std::uint32_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
+  if (light >= cdf_.size() || area_density_[light] == 0.0f) return std::nullopt;
+  const lightsampler::Barycentrics b = lightsampler::triangle_map(
+      lightsampler::uniform_float(random[1]), lightsampler::uniform_float(random[2]));
+  const float density = area_density_[light];
+  return LightSample{light, b.b1, b.b2, emitters_.position(light, b.b1, b.b2), density, density};
+}
+
+float TriangleChoice::pdf(std::uint32_t light, float, float) const { return area_density_[light]; }
+
+}  // namespace tracer

@@ -1,0 +1,26 @@
+#pragma once
+// A light chosen in proportion to a per-light weight, then a uniform point on it: the usual
+// light sampling of renderers, with area or power as the weight.
+
+#include <span>
+#include <vector>
+
+#include "tracer/light_strategy.h"
+
+namespace tracer {
+
+class TriangleChoice : public LightStrategy {
+ public:
+  /// `weights` per light, non-negative, not all zero.
+  TriangleChoice(const Emitters& emitters, std::span<const double> weights);
+
+  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random) const override;
+  float pdf(std::uint32_t light, float b1, float b2) const override;
+
+ private:
+  const Emitters& emitters_;
+  std::vector<double> cdf_;          ///< inclusive, normalised to end at 1
+  std::vector<float> area_density_;  ///< per light: probability / area
+};
+
+}  // namespace tracer
