@@ -2,37 +2,28 @@
 // written by each test into a fresh temporary directory (meshes by hand, images with
 // OpenImageIO), and the tests read back its exit status, stdout, stderr and output files.
 
-#include <cstdlib>
 #include <OpenImageIO/imageio.h>
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
-extern char** environ;
+#include "support/subprocess.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-struct RunResult {
-  int status = -1;  ///< exit status, or -signal if the tool crashed
-  std::string out;
-  std::string err;
-};
+using trs_test::read_file;
+using trs_test::RunResult;
+using trs_test::write_file;
 
 struct PlySample {
   float x, y, z, u, v;
@@ -45,17 +36,6 @@ struct PlyFile {
   std::string header;
   std::vector<PlySample> samples;
 };
-
-std::string read_file(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void write_file(const fs::path& file, const std::string& bytes) {
-  std::ofstream out(file, std::ios::binary);
-  out << bytes;
-  ASSERT_TRUE(out.good()) << file;
-}
 
 PlyFile read_ply(const fs::path& file) {
   const std::string bytes = read_file(file);
@@ -137,26 +117,10 @@ std::string make_glb(std::string json, std::string bin) {
          u32(std::uint32_t(bin.size())) + std::string("BIN\0", 4) + bin;
 }
 
-class CliTest : public ::testing::Test {
+/// Every run gets `--threads 2`.
+class CliTest : public trs_test::ToolTest {
  protected:
-  void SetUp() override {
-    char pattern[] = "/tmp/trs-cli-test-XXXXXX";
-    ASSERT_NE(::mkdtemp(pattern), nullptr);
-    root_ = pattern;
-    fs::create_directory(work());
-  }
-
-  void TearDown() override { fs::remove_all(root_); }
-
-  /// Where inputs and outputs live; the tool's stdout and stderr are captured outside it, so
-  /// that a listing of it shows exactly what the tool left behind.
-  fs::path work() const { return root_ / "work"; }
-  fs::path file(const std::string& name) const { return work() / name; }
-
-  fs::path write_text(const std::string& name, const std::string& text) {
-    write_file(file(name), text);
-    return file(name);
-  }
+  CliTest() : ToolTest(TRS_SAMPLE_EXE, {"--threads", "2"}) {}
 
   /// Writes an image of `channels` channels from float values, stored as `format`.
   fs::path write_image(const std::string& name, int width, int height, int channels,
@@ -188,54 +152,6 @@ class CliTest : public ::testing::Test {
     write_file(file("quad.bin"), quad_gltf_buffer());
     return write_text(name, quad_gltf_json(R"({"uri": "quad.bin", "byteLength": 92})"));
   }
-
-  RunResult run(const std::vector<std::string>& args) const {
-    const fs::path out_log = root_ / "stdout", err_log = root_ / "stderr";
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_log.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_log.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    std::vector<std::string> argv_strings = {TRS_SAMPLE_EXE};
-    argv_strings.insert(argv_strings.end(), args.begin(), args.end());
-    argv_strings.push_back("--threads");
-    argv_strings.push_back("2");
-    std::vector<char*> argv;
-    for (auto& a : argv_strings) argv.push_back(a.data());
-    argv.push_back(nullptr);
-
-    RunResult result;
-    pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, TRS_SAMPLE_EXE, &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    EXPECT_EQ(spawned, 0) << std::strerror(spawned);
-    if (spawned != 0) return result;
-    int status = 0;
-    EXPECT_EQ(::waitpid(pid, &status, 0), pid);
-    result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-    result.out = read_file(out_log);
-    result.err = read_file(err_log);
-    return result;
-  }
-
-  std::set<std::string> listing() const {
-    std::set<std::string> names;
-    for (const auto& entry : fs::directory_iterator(work())) names.insert(entry.path().filename());
-    return names;
-  }
-
-  /// A failed run: status 1, the offending file named on stderr, nothing left behind.
-  void expect_failure_naming(const std::vector<std::string>& args, const fs::path& culprit) {
-    const std::set<std::string> before = listing();
-    const RunResult result = run(args);
-    EXPECT_EQ(result.status, 1) << result.err;
-    EXPECT_NE(result.err.find("trs-sample: error: " + culprit.string()), std::string::npos)
-        << result.err;
-    EXPECT_EQ(listing(), before);
-  }
-
-  fs::path root_;
 };
 
 nlohmann::json read_json(const fs::path& file) { return nlohmann::json::parse(read_file(file)); }

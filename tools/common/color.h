@@ -14,6 +14,13 @@
 
 namespace trs {
 
+/// Rec. 709 luminance of linear RGB. The weights are positive: a colour that is not black has a
+/// luminance that is not zero (what makes luminance a safe light-sampling density).
+template <class T>
+constexpr T luminance(T r, T g, T b) {
+  return T(0.2126) * r + T(0.7152) * g + T(0.0722) * b;
+}
+
 /// Decodes sRGB-encoded values to linear, in place. The curve acts on each value on its own, so
 /// any packed layout (RGB, grey) works. Values outside [0, 1] continue the curve's linear segment
 /// below 0 and its power segment above 1.

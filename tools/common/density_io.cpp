@@ -122,7 +122,7 @@ DensityMap load_density_map(const std::filesystem::path& file, MapEncoding encod
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
                           const float* p = &pixels[i * 3];
-                          map.texels[i] = 0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2];
+                          map.texels[i] = luminance(p[0], p[1], p[2]);
                         }
                       });
   }

@@ -16,6 +16,7 @@
 #include <iostream>
 #include <string>
 
+#include "common/color.h"
 #include "common/file_error.h"
 #include "common/image_output.h"
 
@@ -29,7 +30,7 @@ struct Options {
   double max_relmse = -1.0;
 };
 
-double luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+double luminance(const float* rgb) { return trs::luminance<double>(rgb[0], rgb[1], rgb[2]); }
 
 void check_same_size(const Image& a, const Image& b, const std::filesystem::path& file) {
   if (a.width != b.width || a.height != b.height)

@@ -1,3 +1,4 @@
+#include "common/color.h"
 #include "report.h"
 
 #include <unistd.h>
@@ -72,7 +73,7 @@ double relative_variance(const tracer::RenderResult& result) {
   double sum = 0.0;
   for (std::size_t i = 0; i < pixels; ++i) {
     const float* c = &result.rgb[3 * i];
-    const double mean = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+    const double mean = trs::luminance<double>(c[0], c[1], c[2]);
     sum += result.luminance_variance[i] / (mean * mean + 0.01);
   }
   return sum / double(pixels);

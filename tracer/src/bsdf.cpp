@@ -14,6 +14,7 @@
 // distribution of visible normals") or the cosine. Weight and pdf are those of the mixture (one-sample
 // MIS over the lobes), computed by the same code as eval() and pdf().
 
+#include "common/color.h"
 #include "tracer/bsdf.h"
 
 #include <algorithm>
@@ -32,7 +33,7 @@ constexpr float kPi = std::numbers::pi_v<float>;
 constexpr float kMinAlpha = 1e-3f;
 
 /// Rec. 709 luminance of a linear colour.
-float luminance(glm::vec3 c) { return glm::dot(c, glm::vec3(0.2126f, 0.7152f, 0.0722f)); }
+float luminance(glm::vec3 c) { return trs::luminance(c.r, c.g, c.b); }
 
 float max_component(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
 

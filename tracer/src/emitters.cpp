@@ -1,3 +1,4 @@
+#include "common/color.h"
 #include "tracer/emitters.h"
 
 #include <algorithm>
@@ -8,9 +9,7 @@
 namespace tracer {
 namespace {
 
-/// Rec. 709 luminance of linear RGB: positive weights, so any non-zero radiance has non-zero
-/// density.
-float luminance(glm::vec3 rgb) { return 0.2126f * rgb.r + 0.7152f * rgb.g + 0.0722f * rgb.b; }
+float luminance(glm::vec3 rgb) { return trs::luminance(rgb.r, rgb.g, rgb.b); }
 
 constexpr std::uint32_t kNotLight = std::numeric_limits<std::uint32_t>::max();
 

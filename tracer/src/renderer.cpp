@@ -1,3 +1,4 @@
+#include "common/color.h"
 #include "tracer/renderer.h"
 
 #include <tbb/blocked_range2d.h>
@@ -33,7 +34,7 @@ Camera scene_camera(const Scene& scene) {
   return framing_camera(lower, upper);
 }
 
-float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+float luminance(const glm::vec3& c) { return trs::luminance(c.r, c.g, c.b); }
 
 /// Sums over frames per pixel, in double: thousands of frames of float noise.
 struct Accumulator {
@@ -58,7 +59,7 @@ struct Accumulator {
     for (std::size_t i = 0; i < 3 * pixels; ++i) result.rgb[i] = float(rgb[i] / frames);
     if (frames < 2) return;
     for (std::size_t i = 0; i < pixels; ++i) {
-      const double mean = (0.2126 * rgb[3 * i] + 0.7152 * rgb[3 * i + 1] + 0.0722 * rgb[3 * i + 2]) / frames;
+      const double mean = trs::luminance(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]) / frames;
       const double variance = (luminance_squared[i] / frames - mean * mean) * frames / (frames - 1);
       result.luminance_variance[i] = float(std::max(variance, 0.0));
     }

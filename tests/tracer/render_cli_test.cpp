@@ -1,0 +1,349 @@
+// End-to-end tests of the trs-render command line: the tool runs as a subprocess on the shipped
+// neon-sign scene at tiny settings, or on small glTF files written by each test into a fresh
+// temporary directory, and the tests read back its exit status, stderr and output files.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "common/image_output.h"
+#include "support/subprocess.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using trs_test::read_file;
+using trs_test::RunResult;
+using trs_test::write_file;
+
+const fs::path kScene = fs::path(TRS_SCENES_DIR) / "neon-sign" / "neon-sign.gltf";
+const std::vector<std::string> kStrategies = {"uniform", "power", "trs"};
+
+nlohmann::json read_json(const fs::path& file) { return nlohmann::json::parse(read_file(file)); }
+
+/// The settings of a quick render, but for the image size.
+std::vector<std::string> quick(std::vector<std::string> args) {
+  for (const char* a : {"--spp", "2", "--lights", "1000", "--max-depth", "2", "--threads", "2",
+                        "--quiet"})
+    args.push_back(a);
+  return args;
+}
+
+/// A tiny render of `scene`: 16 x 9 pixels, 2 spp, 1000 lights, 2 bounces, 2 threads.
+std::vector<std::string> tiny(const fs::path& scene, std::vector<std::string> args) {
+  args.insert(args.begin(), scene.string());
+  for (const char* a : {"--width", "16", "--height", "9"}) args.push_back(a);
+  return quick(std::move(args));
+}
+
+/// A 1 x 1 quad in the z = 0 plane facing +z, UVs equal to its positions, as glTF buffer bytes:
+/// 4 float positions, 4 float UVs, 6 uint16 indices.
+std::string quad_buffer() {
+  const float positions[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+  const float uvs[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+  const std::uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
+  std::string bytes(sizeof positions + sizeof uvs + sizeof indices, '\0');
+  std::memcpy(bytes.data(), positions, sizeof positions);
+  std::memcpy(bytes.data() + sizeof positions, uvs, sizeof uvs);
+  std::memcpy(bytes.data() + sizeof positions + sizeof uvs, indices, sizeof indices);
+  return bytes;
+}
+
+/// The quad's glTF document with one material, `material` its JSON object; `extra` are more
+/// top-level members (textures, images), each followed by a comma.
+std::string quad_gltf(const std::string& material, const std::string& extra = "") {
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2,
+                              "material": 0}]}],
+  "materials": [)" +
+         material + "],\n  " + extra + R"(
+  "buffers": [{"uri": "quad.bin", "byteLength": 92}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                  {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                  {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+    {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
+}
+
+class RenderCliTest : public trs_test::ToolTest {
+ protected:
+  RenderCliTest() : ToolTest(TRS_RENDER_EXE) {}
+
+  fs::path write_quad_scene(const std::string& name, const std::string& material,
+                            const std::string& extra = "") {
+    write_file(file("quad.bin"), quad_buffer());
+    return write_text(name, quad_gltf(material, extra));
+  }
+
+  /// Outputs of every kind, for checking that a failed run leaves none behind.
+  std::vector<std::string> all_outputs() const {
+    return {"--out",     file("out.exr").string(),     "--stats",    file("out.json").string(),
+            "--preview", file("out.png").string(), "--variance", file("var.exr").string()};
+  }
+};
+
+/// The EXR, checked to have `width` x `height` finite non-negative pixels; nullopt (a test
+/// failure recorded) if it cannot be read.
+std::optional<trs::Image> read_render(const fs::path& exr, std::uint32_t width,
+                                      std::uint32_t height) {
+  trs::Image image;
+  try {
+    image = trs::read_exr(exr);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << e.what();
+    return std::nullopt;
+  }
+  EXPECT_EQ(image.width, width) << exr;
+  EXPECT_EQ(image.height, height) << exr;
+  EXPECT_EQ(image.rgb.size(), 3 * std::size_t(image.width) * image.height) << exr;
+  std::size_t bad = 0;
+  for (const float v : image.rgb) bad += !(std::isfinite(v) && v >= 0.0f);
+  EXPECT_EQ(bad, 0u) << exr << ": values not finite or negative";
+  return image;
+}
+
+bool any_positive(const trs::Image& image) {
+  for (const float v : image.rgb)
+    if (v > 0.0f) return true;
+  return false;
+}
+
+// 1. A good run of each strategy: the image, its preview, its variance and the statistics.
+TEST_F(RenderCliTest, RendersEveryStrategy) {
+  for (const std::string& strategy : kStrategies) {
+    SCOPED_TRACE(strategy);
+    const fs::path exr = file(strategy + ".exr"), json = file(strategy + ".json"),
+                   png = file(strategy + ".png"), variance = file(strategy + "-var.exr");
+    const RunResult result =
+        run(tiny(kScene, {"--strategy", strategy, "--backend", "cpu", "--seed", "5", "--out",
+                          exr.string(), "--stats", json.string(), "--preview", png.string(),
+                          "--variance", variance.string()}));
+    ASSERT_EQ(result.status, 0) << result.err;
+    EXPECT_EQ(result.err, "");
+
+    const auto image = read_render(exr, 16, 9);
+    ASSERT_TRUE(image);
+    EXPECT_TRUE(any_positive(*image)) << "an all-black image";
+    read_render(variance, 16, 9);
+    try {
+      const trs::Image preview = trs::read_image(png);
+      EXPECT_EQ(preview.width, 16u);
+      EXPECT_EQ(preview.height, 9u);
+      EXPECT_TRUE(preview.integer);
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << e.what();
+    }
+
+    const nlohmann::json stats = read_json(json);
+    for (const char* key : {"settings", "frames", "interrupted", "wall_seconds", "paths_per_second",
+                            "rays_per_second", "sampler_ms_per_frame", "relative_variance"}) {
+      EXPECT_TRUE(stats.contains(key)) << key;
+    }
+    const nlohmann::json& settings = stats["settings"];
+    EXPECT_EQ(settings["width"], 16);
+    EXPECT_EQ(settings["height"], 9);
+    EXPECT_EQ(settings["spp"], 2);
+    EXPECT_EQ(settings["strategy"], strategy);
+    EXPECT_EQ(settings["lights"], 1000.0);
+    EXPECT_EQ(settings["seed"], 5);
+    EXPECT_EQ(settings["max_depth"], 2);
+    EXPECT_EQ(settings["threads"], 2);
+    EXPECT_EQ(settings["backend"], "cpu");
+    EXPECT_EQ(stats["frames"], 2);
+    EXPECT_EQ(stats["interrupted"], false);
+    EXPECT_GT(stats["wall_seconds"].get<double>(), 0.0);
+    EXPECT_GT(stats["paths_per_second"].get<double>(), 0.0);
+    EXPECT_GT(stats["rays_per_second"].get<double>(), 0.0);
+    const double relative_variance = stats["relative_variance"].get<double>();
+    EXPECT_TRUE(std::isfinite(relative_variance) && relative_variance >= 0.0) << relative_variance;
+    const double sampler_ms = stats["sampler_ms_per_frame"].get<double>();
+    if (strategy == "trs")
+      EXPECT_GT(sampler_ms, 0.0);
+    else
+      EXPECT_GE(sampler_ms, 0.0);
+  }
+}
+
+// 2. A settings file gives defaults; the command line wins over it.
+TEST_F(RenderCliTest, SettingsFileAndCommandLine) {
+  const fs::path settings = write_text("render.toml", "# test settings\nwidth = 8\nspp = 3\n");
+  const std::vector<std::string> base = {kScene.string(), "--settings", settings.string(),
+                                         "--height", "9", "--lights", "1000", "--max-depth", "2",
+                                         "--threads", "2", "--quiet"};
+
+  std::vector<std::string> from_file = base;
+  from_file.insert(from_file.end(), {"--out", file("file.exr").string(), "--stats",
+                                     file("file.json").string()});
+  RunResult result = run(from_file);
+  ASSERT_EQ(result.status, 0) << result.err;
+  read_render(file("file.exr"), 8, 9);
+  nlohmann::json stats = read_json(file("file.json"));
+  EXPECT_EQ(stats["settings"]["width"], 8);
+  EXPECT_EQ(stats["settings"]["spp"], 3);
+  EXPECT_EQ(stats["frames"], 3);
+
+  std::vector<std::string> overridden = base;
+  overridden.insert(overridden.end(), {"--width", "16", "--out", file("cli.exr").string(),
+                                       "--stats", file("cli.json").string()});
+  result = run(overridden);
+  ASSERT_EQ(result.status, 0) << result.err;
+  read_render(file("cli.exr"), 16, 9);
+  stats = read_json(file("cli.json"));
+  EXPECT_EQ(stats["settings"]["width"], 16);
+  EXPECT_EQ(stats["settings"]["spp"], 3);  // still from the file
+}
+
+// 3. The image depends on the seed, not on the number of threads.
+TEST_F(RenderCliTest, SameSeedSameImageWithAnyThreadCount) {
+  for (const std::string& strategy : kStrategies) {
+    SCOPED_TRACE(strategy);
+    std::vector<std::vector<float>> images;
+    for (const char* threads : {"1", "2"}) {
+      const fs::path exr = file(strategy + "-" + threads + ".exr");
+      std::vector<std::string> args = tiny(kScene, {"--strategy", strategy, "--backend", "cpu",
+                                                    "--seed", "11", "--out", exr.string()});
+      args.push_back("--threads");  // the last --threads wins over tiny()'s
+      args.push_back(threads);
+      const RunResult result = run(args);
+      ASSERT_EQ(result.status, 0) << result.err;
+      const auto image = read_render(exr, 16, 9);
+      ASSERT_TRUE(image);
+      EXPECT_TRUE(any_positive(*image));
+      images.push_back(image->rgb);
+    }
+    ASSERT_EQ(images[0].size(), images[1].size());
+    EXPECT_EQ(std::memcmp(images[0].data(), images[1].data(), images[0].size() * sizeof(float)),
+              0)
+        << "1 and 2 threads give different images";
+  }
+}
+
+// 4. Bad inputs: status 1, the file at fault named, no output written.
+TEST_F(RenderCliTest, MissingScene) {
+  const fs::path absent = file("absent.gltf");
+  expect_failure_naming(tiny(absent, all_outputs()), absent);
+}
+
+TEST_F(RenderCliTest, MalformedGltf) {
+  const fs::path broken =
+      write_text("broken.gltf", R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [)");
+  expect_failure_naming(tiny(broken, all_outputs()), broken);
+}
+
+// The control: the hand-written quad renders when its emission is a constant.
+TEST_F(RenderCliTest, HandWrittenEmissiveQuadRenders) {
+  const fs::path scene =
+      write_quad_scene("glow.gltf", R"({"name": "glow", "emissiveFactor": [1, 1, 1]})");
+  for (const std::string& strategy : kStrategies) {
+    SCOPED_TRACE(strategy);
+    const RunResult result =
+        run(tiny(scene, {"--strategy", strategy, "--out", file("glow.exr").string()}));
+    ASSERT_EQ(result.status, 0) << result.err;
+    read_render(file("glow.exr"), 16, 9);
+  }
+}
+
+TEST_F(RenderCliTest, MissingEmissiveTexture) {
+  const fs::path scene = write_quad_scene(
+      "textured.gltf",
+      R"({"name": "sign", "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0}})",
+      R"("textures": [{"source": 0}], "images": [{"uri": "missing.png"}],)");
+  expect_failure_naming(tiny(scene, all_outputs()), scene);
+}
+
+TEST_F(RenderCliTest, SceneWithoutEmitters) {
+  const fs::path scene = write_quad_scene(
+      "dark.gltf", R"({"name": "grey", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1]}})");
+  for (const std::string& strategy : kStrategies) {
+    SCOPED_TRACE(strategy);
+    std::vector<std::string> args = all_outputs();
+    args.push_back("--strategy");
+    args.push_back(strategy);
+    expect_failure_naming(tiny(scene, args), scene);
+  }
+}
+
+// 5. Bad command lines: status 2, nothing written.
+TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
+  const std::set<std::string> before = listing();
+  for (const std::vector<std::string>& args :
+       {tiny(kScene, {"--strategy", "magic", "--out", file("out.exr").string()}),
+        tiny(kScene, {"--out", file("out.exr").string(), "--spp", "0"}),
+        tiny(kScene, {"--stats", file("out.json").string()})}) {
+    const RunResult result = run(args);
+    EXPECT_EQ(result.status, 2) << result.err;
+    EXPECT_NE(result.err.find("trs-render: error: "), std::string::npos) << result.err;
+  }
+  EXPECT_EQ(listing(), before);
+}
+
+enum class SigintState { default_action, caught, exited };
+
+/// Whether a running process has a SIGINT handler installed, from Linux's /proc.
+SigintState sigint_state(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("State:", 0) == 0 && line.find('Z') != std::string::npos)
+      return SigintState::exited;
+    if (line.rfind("SigCgt:", 0) == 0) {
+      const unsigned long long mask = std::stoull(line.substr(7), nullptr, 16);
+      return mask & (1ull << (SIGINT - 1)) ? SigintState::caught : SigintState::default_action;
+    }
+  }
+  return SigintState::exited;
+}
+
+// 6. Ctrl-C: the frames done are saved, the run says it was interrupted, status 130.
+TEST_F(RenderCliTest, InterruptSavesTheFramesDone) {
+  const fs::path exr = file("long.exr"), json = file("long.json");
+  const pid_t pid = start({kScene.string(), "--width", "64", "--height", "36", "--spp", "100000",
+                           "--lights", "1000", "--max-depth", "2", "--threads", "2", "--out",
+                           exr.string(), "--stats", json.string()});
+  ASSERT_GT(pid, 0);
+  // The handler is installed once the scene is loaded and the render starts (earlier, Ctrl-C
+  // just ends the process); then a frame of 64 x 36 takes milliseconds.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  SigintState state = SigintState::default_action;
+  while ((state = sigint_state(pid)) == SigintState::default_action &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  if (state != SigintState::caught) {
+    ::kill(pid, SIGKILL);
+    const RunResult failed = finish(pid);
+    FAIL() << "the render did not start: status " << failed.status << "\n" << failed.err;
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  const RunResult result = finish(pid);
+
+  EXPECT_EQ(result.status, 130) << result.err;
+  EXPECT_NE(result.err.find("interrupted"), std::string::npos) << result.err;
+  EXPECT_EQ(listing(), (std::set<std::string>{"long.exr", "long.json"}));  // no temporaries
+  const auto image = read_render(exr, 64, 36);
+  ASSERT_TRUE(image);
+  EXPECT_TRUE(any_positive(*image));
+  const nlohmann::json stats = read_json(json);
+  EXPECT_EQ(stats["interrupted"], true);
+  const auto frames = stats["frames"].get<unsigned>();
+  EXPECT_GE(frames, 1u);
+  EXPECT_LE(frames, 99999u);
+  EXPECT_EQ(stats["settings"]["spp"], 100000);
+}
+
+}  // namespace
