@@ -33,19 +33,14 @@ const std::vector<std::string> kStrategies = {"uniform", "power", "trs"};
 
 nlohmann::json read_json(const fs::path& file) { return nlohmann::json::parse(read_file(file)); }
 
-/// The settings of a quick render, but for the image size.
-std::vector<std::string> quick(std::vector<std::string> args) {
-  for (const char* a : {"--spp", "2", "--lights", "1000", "--max-depth", "2", "--threads", "2",
-                        "--quiet"})
-    args.push_back(a);
-  return args;
-}
-
-/// A tiny render of `scene`: 16 x 9 pixels, 2 spp, 1000 lights, 2 bounces, 2 threads.
+/// A tiny render of `scene`: 16 x 9 pixels, 2 spp, 1000 lights, 2 bounces, 2 threads, no
+/// progress bar. An option given again after these takes the later value.
 std::vector<std::string> tiny(const fs::path& scene, std::vector<std::string> args) {
   args.insert(args.begin(), scene.string());
-  for (const char* a : {"--width", "16", "--height", "9"}) args.push_back(a);
-  return quick(std::move(args));
+  for (const char* a : {"--width", "16", "--height", "9", "--spp", "2", "--lights", "1000",
+                        "--max-depth", "2", "--threads", "2", "--quiet"})
+    args.push_back(a);
+  return args;
 }
 
 /// A 1 x 1 quad in the z = 0 plane facing +z, UVs equal to its positions, as glTF buffer bytes:
@@ -263,7 +258,8 @@ TEST_F(RenderCliTest, MissingEmissiveTexture) {
       "textured.gltf",
       R"({"name": "sign", "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0}})",
       R"("textures": [{"source": 0}], "images": [{"uri": "missing.png"}],)");
-  expect_failure_naming(tiny(scene, all_outputs()), scene);
+  // The file at fault is the texture, resolved against the glTF's directory.
+  expect_failure_naming(tiny(scene, all_outputs()), file("missing.png"));
 }
 
 TEST_F(RenderCliTest, SceneWithoutEmitters) {
@@ -281,9 +277,10 @@ TEST_F(RenderCliTest, SceneWithoutEmitters) {
 // 5. Bad command lines: status 2, nothing written.
 TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
   const std::set<std::string> before = listing();
+  std::vector<std::string> no_samples = tiny(kScene, {"--out", file("out.exr").string()});
+  no_samples.insert(no_samples.end(), {"--spp", "0"});  // after tiny()'s --spp: the last wins
   for (const std::vector<std::string>& args :
-       {tiny(kScene, {"--strategy", "magic", "--out", file("out.exr").string()}),
-        tiny(kScene, {"--out", file("out.exr").string(), "--spp", "0"}),
+       {tiny(kScene, {"--strategy", "magic", "--out", file("out.exr").string()}), no_samples,
         tiny(kScene, {"--stats", file("out.json").string()})}) {
     const RunResult result = run(args);
     EXPECT_EQ(result.status, 2) << result.err;

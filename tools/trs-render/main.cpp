@@ -48,6 +48,8 @@ void check_writable(const std::filesystem::path& file) { AtomicFile probe(file);
 
 int run(const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  // From here on, Ctrl-C stops cleanly: temporaries are removed and what is done is saved.
+  std::signal(SIGINT, on_interrupt);
   check_writable(options.out);
   if (options.preview) check_writable(*options.preview);
   if (options.variance) check_writable(*options.variance);
@@ -61,12 +63,15 @@ int run(const RenderOptions& options) {
   } catch (const std::invalid_argument& e) {
     throw FileError(options.scene, e.what());
   }
-  std::signal(SIGINT, on_interrupt);
   ProgressBar bar(options.progress);
   const tracer::RenderResult result =
       renderer->render([&](unsigned done, unsigned total) { bar.update(done, total); }, interrupted);
   bar.finish();
   std::signal(SIGINT, SIG_DFL);
+  if (result.frames == 0) {
+    std::cerr << "trs-render: interrupted before the first frame; nothing written\n";
+    return kInterrupted;
+  }
 
   write_exr(options.out, result.width, result.height, result.rgb.data());
   if (options.preview)
