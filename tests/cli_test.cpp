@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "support/gltf_quad.h"
 #include "support/subprocess.h"
 
 namespace {
@@ -77,18 +78,6 @@ const char* kQuadObj =
     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
     "f 1/1 2/2 3/3 4/4\n";
 
-/// The same quad as glTF buffer contents: 4 float positions, 4 float UVs, 6 uint16 indices.
-std::string quad_gltf_buffer() {
-  const float positions[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-  const float uvs[8] = {0, 0, 1, 0, 1, 1, 0, 1};
-  const std::uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
-  std::string bytes(sizeof positions + sizeof uvs + sizeof indices, '\0');
-  std::memcpy(bytes.data(), positions, sizeof positions);
-  std::memcpy(bytes.data() + sizeof positions, uvs, sizeof uvs);
-  std::memcpy(bytes.data() + sizeof positions + sizeof uvs, indices, sizeof indices);
-  return bytes;
-}
-
 /// The quad's glTF document, its node translated by (10, 0, 0); `buffer` is the buffer object.
 std::string quad_gltf_json(const std::string& buffer) {
   return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
@@ -149,7 +138,7 @@ class CliTest : public trs_test::ToolTest {
   }
 
   fs::path write_quad_gltf(const std::string& name) {
-    write_file(file("quad.bin"), quad_gltf_buffer());
+    write_file(file("quad.bin"), trs_test::quad_gltf_buffer());
     return write_text(name, quad_gltf_json(R"({"uri": "quad.bin", "byteLength": 92})"));
   }
 };
@@ -251,7 +240,7 @@ TEST_F(CliTest, ObjAndGltfUvConventions) {
 
 TEST_F(CliTest, ReadsBinaryGltf) {
   const std::string json = quad_gltf_json(R"({"byteLength": 92})");
-  write_file(file("quad.glb"), make_glb(json, quad_gltf_buffer()));
+  write_file(file("quad.glb"), make_glb(json, trs_test::quad_gltf_buffer()));
   const fs::path map = write_constant_map("map.exr", 100.0f);
   const RunResult result = run({file("quad.glb"), map, "--stats", file("s.json")});
   ASSERT_EQ(result.status, 0) << result.err;
@@ -357,7 +346,7 @@ TEST_F(CliTest, BadGltfFiles) {
       write_text("nobin.gltf", quad_gltf_json(R"({"uri": "absent.bin", "byteLength": 92})"));
   expect_failure_naming({missing_bin, map}, missing_bin);
 
-  write_file(file("short.bin"), quad_gltf_buffer().substr(0, 60));
+  write_file(file("short.bin"), trs_test::quad_gltf_buffer().substr(0, 60));
   const fs::path short_bin =
       write_text("short.gltf", quad_gltf_json(R"({"uri": "short.bin", "byteLength": 60})"));
   expect_failure_naming({short_bin, map}, short_bin);
@@ -365,7 +354,7 @@ TEST_F(CliTest, BadGltfFiles) {
   std::string no_uv_json = quad_gltf_json(R"({"uri": "quad.bin", "byteLength": 92})");
   no_uv_json.replace(no_uv_json.find(R"(, "TEXCOORD_0": 1)"), std::strlen(R"(, "TEXCOORD_0": 1)"),
                      "");
-  write_file(file("quad.bin"), quad_gltf_buffer());
+  write_file(file("quad.bin"), trs_test::quad_gltf_buffer());
   const fs::path no_uvs = write_text("nouvs.gltf", no_uv_json);
   expect_failure_naming({no_uvs, map}, no_uvs);
 }

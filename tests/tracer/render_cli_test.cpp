@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "support/gltf_quad.h"
 #include "common/image_output.h"
 #include "support/subprocess.h"
 
@@ -41,19 +42,6 @@ std::vector<std::string> tiny(const fs::path& scene, std::vector<std::string> ar
                         "--max-depth", "2", "--threads", "2", "--quiet"})
     args.push_back(a);
   return args;
-}
-
-/// A 1 x 1 quad in the z = 0 plane facing +z, UVs equal to its positions, as glTF buffer bytes:
-/// 4 float positions, 4 float UVs, 6 uint16 indices.
-std::string quad_buffer() {
-  const float positions[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-  const float uvs[8] = {0, 0, 1, 0, 1, 1, 0, 1};
-  const std::uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
-  std::string bytes(sizeof positions + sizeof uvs + sizeof indices, '\0');
-  std::memcpy(bytes.data(), positions, sizeof positions);
-  std::memcpy(bytes.data() + sizeof positions, uvs, sizeof uvs);
-  std::memcpy(bytes.data() + sizeof positions + sizeof uvs, indices, sizeof indices);
-  return bytes;
 }
 
 /// The quad's glTF document with one material, `material` its JSON object; `extra` are more
@@ -81,7 +69,7 @@ class RenderCliTest : public trs_test::ToolTest {
 
   fs::path write_quad_scene(const std::string& name, const std::string& material,
                             const std::string& extra = "") {
-    write_file(file("quad.bin"), quad_buffer());
+    write_file(file("quad.bin"), trs_test::quad_gltf_buffer());
     return write_text(name, quad_gltf(material, extra));
   }
 
