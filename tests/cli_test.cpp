@@ -85,13 +85,7 @@ std::string quad_gltf_json(const std::string& buffer) {
   "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2}]}],
   "buffers": [)" +
          buffer + R"(],
-  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
-                  {"buffer": 0, "byteOffset": 48, "byteLength": 32},
-                  {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
-  "accessors": [
-    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
-    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
-    {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
+  )" + trs_test::kQuadGltfViews + "}";
 }
 
 /// A binary glTF: header, JSON chunk (padded with spaces), BIN chunk (padded with zeros).

@@ -48,7 +48,7 @@ struct QuadOverPlane {
                        {0.5f, -0.5f, 1}, emitter);
     trs_test::add_quad(scene, {-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}, floor);
     geometry = std::make_unique<Geometry>(scene.mesh);
-    emitters = std::make_unique<Emitters>(scene, 0);
+    emitters = std::make_unique<Emitters>(scene, trs_test::kCpuSampler);
   }
 
   Ray ray() const { return {eye, glm::normalize(point - eye)}; }
@@ -104,7 +104,6 @@ std::unique_ptr<LightStrategy> strategy(const Emitters& emitters, StrategyKind k
   options.kind = kind;
   options.lights = lights;
   options.seed = 7;
-  options.sampler.backend = lightsampler::Backend::cpu;
   return make_light_strategy(emitters, options);
 }
 

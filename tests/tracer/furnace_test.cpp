@@ -61,7 +61,7 @@ double albedo(const Bsdf& bsdf, glm::vec3 n, glm::vec3 wo) {
 TEST(Furnace, OneBounceReturnsEmissionPlusAlbedo) {
   const Scene scene = furnace();
   const Geometry geometry(scene.mesh);
-  const Emitters emitters(scene, 0);
+  const Emitters emitters(scene, trs_test::kCpuSampler);
   const glm::vec3 eye(0.2f, -0.3f, 0.1f), target(0.4f, 0.1f, -1.0f);  // onto the z = -1 wall
   const Ray ray{eye, glm::normalize(target - eye)};
   const Bsdf bsdf({glm::vec3(1.0f), 0.0f, kRoughness}, {0, 0, 1});
@@ -70,7 +70,6 @@ TEST(Furnace, OneBounceReturnsEmissionPlusAlbedo) {
     StrategyOptions options;
     options.kind = kind;
     options.lights = 5000;
-    options.sampler.backend = lightsampler::Backend::cpu;
     auto strategy = make_light_strategy(emitters, options);
     for (unsigned depth : {0u, 1u}) {
       const trs_test::Estimate e = trs_test::estimate_radiance(scene, geometry, emitters, *strategy,

@@ -36,13 +36,12 @@ std::unique_ptr<LightStrategy> make(const Emitters& emitters, StrategyKind kind)
   StrategyOptions options;
   options.kind = kind;
   options.lights = 1e4;
-  options.sampler.backend = lightsampler::Backend::cpu;
   return make_light_strategy(emitters, options);
 }
 
 TEST(Mis, LightAndBsdfWeightsSumToOne) {
   const Scene scene = two_emitters();
-  const Emitters emitters(scene, 0);
+  const Emitters emitters(scene, trs_test::kCpuSampler);
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const glm::vec3 x(0.2f, 0.1f, 0.0f), n(0, 0, 1), wo = glm::normalize(glm::vec3(0.3f, -0.2f, 1));
@@ -77,7 +76,7 @@ TEST(Mis, LightAndBsdfWeightsSumToOne) {
 // at most 20 between texels: the relative standard error is below 0.3%).
 TEST(Mis, PdfIsANormalisedAreaDensity) {
   const Scene scene = two_emitters();
-  const Emitters emitters(scene, 0);
+  const Emitters emitters(scene, trs_test::kCpuSampler);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   for (StrategyKind kind : {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs}) {

@@ -54,13 +54,7 @@ std::string quad_gltf(const std::string& material, const std::string& extra = ""
   "materials": [)" +
          material + "],\n  " + extra + R"(
   "buffers": [{"uri": "quad.bin", "byteLength": 92}],
-  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
-                  {"buffer": 0, "byteOffset": 48, "byteLength": 32},
-                  {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
-  "accessors": [
-    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
-    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
-    {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
+  )" + trs_test::kQuadGltfViews + "}";
 }
 
 class RenderCliTest : public trs_test::ToolTest {

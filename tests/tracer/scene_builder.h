@@ -5,9 +5,14 @@
 #include <random>
 #include <vector>
 
+#include <lightsampler/vulkan.h>
+
 #include "tracer/scene.h"
 
 namespace trs_test {
+
+/// The light sampler the tracer's tests use: the CPU backend, on every hardware thread.
+inline const lightsampler::SamplerOptions kCpuSampler{.backend = lightsampler::Backend::cpu};
 
 /// Appends the quad p0 p1 p2 p3 (two triangles 0 1 2 and 0 2 3; front face counter-clockwise)
 /// with UVs (0,0) (1,0) (1,1) (0,1) at its corners.

@@ -54,10 +54,11 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   app.add_option("--threads", r.threads, "worker threads; 0: all hardware threads")
       ->capture_default_str();
   app.add_option("--backend", backend,
-                 "trs light sampler; auto: Vulkan on a GPU, else the native CPU backend")
+                 "light sampler (trs's point lights, every strategy's light integrals); auto: Vulkan "
+                 "on a GPU, else the native CPU backend")
       ->check(CLI::IsMember(names(kBackends)))
       ->capture_default_str();
-  app.add_option("--device", r.strategy.sampler.vulkan.device,
+  app.add_option("--device", r.sampler.vulkan.device,
                  "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE)");
   app.add_option("--stats", stats, "JSON summary of the run");
   app.add_option("--preview", preview, "8-bit sRGB PNG preview of the image");
@@ -80,8 +81,7 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
     return kUsageError;
   }
   r.strategy.kind = kStrategies.at(strategy);
-  r.strategy.sampler.backend = kBackends.at(backend);
-  r.strategy.sampler.cpu.threads = r.threads;
+  r.sampler.backend = kBackends.at(backend);
   r.strategy.seed = r.seed;
   options.out = out;
   if (!stats.empty()) options.stats = stats;

@@ -97,7 +97,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"seed", r.seed},
         {"max_depth", r.max_depth},
         {"threads", r.threads},
-        {"backend", lightsampler::to_string(r.strategy.sampler.backend)}}},
+        {"backend", lightsampler::to_string(r.sampler.backend)}}},
       {"frames", result.frames},
       {"interrupted", result.interrupted},
       {"light_sampler", result.light_device},

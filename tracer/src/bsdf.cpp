@@ -14,12 +14,13 @@
 // distribution of visible normals") or the cosine. Weight and pdf are those of the mixture (one-sample
 // MIS over the lobes), computed by the same code as eval() and pdf().
 
-#include "common/color.h"
 #include "tracer/bsdf.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+
+#include "luminance.h"
 
 namespace tracer {
 
@@ -32,8 +33,6 @@ constexpr float kPi = std::numbers::pi_v<float>;
 /// can always be weighted by MIS against BSDF samples.
 constexpr float kMinAlpha = 1e-3f;
 
-/// Rec. 709 luminance of a linear colour.
-float luminance(glm::vec3 c) { return trs::luminance(c.r, c.g, c.b); }
 
 float max_component(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
 

@@ -1,4 +1,3 @@
-#include "common/color.h"
 #include "tracer/emitters.h"
 
 #include <algorithm>
@@ -6,10 +5,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "luminance.h"
+
 namespace tracer {
 namespace {
 
-float luminance(glm::vec3 rgb) { return trs::luminance(rgb.r, rgb.g, rgb.b); }
 
 constexpr std::uint32_t kNotLight = std::numeric_limits<std::uint32_t>::max();
 
@@ -24,7 +24,7 @@ lightsampler::Addressing addressing(const Texture& texture) {
 
 }  // namespace
 
-Emitters::Emitters(const Scene& scene, unsigned threads) {
+Emitters::Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampler) {
   std::vector<std::uint32_t> emission_of_material(scene.materials.size(), kNotLight);
   for (std::size_t m = 0; m < scene.materials.size(); ++m) {
     if (!scene.materials[m].emissive()) continue;
@@ -38,7 +38,7 @@ Emitters::Emitters(const Scene& scene, unsigned threads) {
   }
   for (const Emission& e : emissions_)
     map_views_.push_back({e.luminance, e.width, e.height, e.addressing, e.strength});
-  sampler_ = lightsampler::make_cpu_sampler(mesh(), map_views_, {.threads = threads});
+  sampler_ = lightsampler::make_sampler(mesh(), map_views_, sampler);
   // The counting pass alone gives every light's integral.
   lightsampler::Frame frame;
   lightsampler::FrameRequest request;

@@ -1,4 +1,3 @@
-#include "common/color.h"
 #include "tracer/renderer.h"
 
 #include <tbb/blocked_range2d.h>
@@ -10,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "luminance.h"
 #include "tracer/camera.h"
 #include "tracer/emitters.h"
 #include "tracer/geometry.h"
@@ -34,7 +34,6 @@ Camera scene_camera(const Scene& scene) {
   return framing_camera(lower, upper);
 }
 
-float luminance(const glm::vec3& c) { return trs::luminance(c.r, c.g, c.b); }
 
 /// Sums over frames per pixel, in double: thousands of frames of float noise.
 struct Accumulator {
@@ -66,6 +65,12 @@ struct Accumulator {
   }
 };
 
+lightsampler::SamplerOptions sampler_options(const RenderSettings& settings) {
+  lightsampler::SamplerOptions options = settings.sampler;
+  options.cpu.threads = settings.threads;
+  return options;
+}
+
 }  // namespace
 
 struct Renderer::State {
@@ -81,7 +86,7 @@ struct Renderer::State {
       : scene(s),
         settings(r),
         geometry(s.mesh),
-        emitters(s, r.threads),
+        emitters(s, sampler_options(r)),
         strategy(make_light_strategy(emitters, r.strategy)),
         camera(scene_camera(s), r.width, r.height) {}
 };

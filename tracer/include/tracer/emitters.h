@@ -14,7 +14,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
-#include <lightsampler/sampler.h>
+#include <lightsampler/vulkan.h>
 
 #include "tracer/scene.h"
 
@@ -22,9 +22,11 @@ namespace tracer {
 
 class Emitters {
  public:
+  /// Builds the light sampler over the lights with `sampler` (lightsampler::make_sampler).
   /// Throws std::invalid_argument naming the material or texture that cannot be an emitter
-  /// (a texture wrap mode the sampler does not have). `threads`: 0 for every hardware thread.
-  Emitters(const Scene& scene, unsigned threads);
+  /// (a texture wrap mode the sampler does not have), lightsampler::VulkanUnavailable when a
+  /// Vulkan sampler was asked for and none can be made.
+  Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampler);
   ~Emitters();
 
   /// Emissive triangles ("lights"), numbered 0..count()-1 in scene order.
@@ -49,7 +51,8 @@ class Emitters {
   /// The lights as the sampler's inputs (valid while this object lives).
   lightsampler::MeshView mesh() const;
   std::span<const lightsampler::DensityMapView> maps() const { return map_views_; }
-  /// A CPU sampler over the lights: the texel lookups, and the per-light integrals.
+  /// The light sampler over the lights: the texel lookups and per-light integrals every
+  /// strategy uses, and the point lights of `trs`.
   lightsampler::Sampler& sampler() const { return *sampler_; }
 
  private:

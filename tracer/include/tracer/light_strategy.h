@@ -9,7 +9,6 @@
 #include <string>
 
 #include <glm/glm.hpp>
-#include <lightsampler/vulkan.h>
 
 #include "tracer/emitters.h"
 
@@ -59,11 +58,9 @@ struct StrategyOptions {
   StrategyKind kind = StrategyKind::trs;
   double lights = 1e6;          ///< trs: expected point lights per frame (N_target)
   std::uint64_t seed = 0;       ///< trs: frame f draws its set with a seed from (seed, f)
-  lightsampler::SamplerOptions sampler;  ///< trs: backend and device
 };
 
-/// Throws std::invalid_argument when the scene has no lights, lightsampler::VulkanUnavailable
-/// when a Vulkan sampler was asked for and none can be made.
+/// Throws std::invalid_argument when the scene has no lights.
 std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,
                                                    const StrategyOptions& options);
 

@@ -22,6 +22,8 @@ struct RenderSettings {
   std::uint64_t seed = 0;
   unsigned threads = 0;     ///< paths and CPU light sampler; 0: every hardware thread
   StrategyOptions strategy;
+  /// The light sampler's backend and device (its CPU threads are `threads`).
+  lightsampler::SamplerOptions sampler;
 };
 
 struct RenderResult {

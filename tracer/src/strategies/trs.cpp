@@ -20,25 +20,22 @@ namespace {
 class TrsStrategy : public LightStrategy {
  public:
   TrsStrategy(const Emitters& emitters, const StrategyOptions& options)
-      : emitters_(emitters), target_(options.lights), seed_(options.seed) {
+      : emitters_(emitters),
+        sampler_(emitters.sampler()),
+        target_(options.lights),
+        seed_(options.seed) {
     if (!(emitters.total_density() > 0.0))
       throw std::invalid_argument("the lights emit nothing: no density to sample");
     // Picking one light of the set takes 32 random bits.
     if (!(target_ >= 1.0 && target_ < 0x1p32))
       throw std::invalid_argument("trs takes 1 to 2^32 - 1 lights per frame");
-    // The CPU backend is the emitters' own sampler; another backend gets a sampler of its own.
-    if (options.sampler.backend != lightsampler::Backend::cpu) {
-      owned_ = lightsampler::make_sampler(emitters.mesh(), emitters.maps(), options.sampler);
-      if (owned_->backend() == "cpu") owned_.reset();
-    }
-    sampler_ = owned_ ? owned_.get() : &emitters.sampler();
   }
 
   std::string name() const override { return "trs"; }
 
   void begin_frame(std::uint64_t frame) override {
     const std::uint64_t seed = lightsampler::mix64(seed_ ^ lightsampler::mix64(frame));
-    sampler_->generate({.seed = seed, .target_count = target_}, frame_);
+    sampler_.generate({.seed = seed, .target_count = target_}, frame_);
     if (frame_.sample_count >= 0x1p32)
       throw std::runtime_error("the light sampler drew 2^32 lights or more in one frame");
     scale_ = frame_.sample_count > 0 ? float(target_ / double(frame_.sample_count)) : 0.0f;
@@ -62,14 +59,13 @@ class TrsStrategy : public LightStrategy {
   LightFrame last_frame() const override {
     return {frame_.total_ms, frame_.sample_count, frame_.exhausted};
   }
-  std::string device() const override { return sampler_->backend() + ": " + sampler_->device(); }
+  std::string device() const override { return sampler_.backend() + ": " + sampler_.device(); }
 
  private:
   const Emitters& emitters_;
+  lightsampler::Sampler& sampler_;
   double target_;
   std::uint64_t seed_;
-  std::unique_ptr<lightsampler::Sampler> owned_;
-  lightsampler::Sampler* sampler_ = nullptr;
   lightsampler::Frame frame_;
   float scale_ = 0.0f;  ///< N_target / N
 };

@@ -1,0 +1,12 @@
+#pragma once
+// Luminance of a glm colour, by the project's one definition (common/color.h).
+
+#include <glm/glm.hpp>
+
+#include "common/color.h"
+
+namespace tracer {
+
+inline float luminance(const glm::vec3& c) { return trs::luminance(c.r, c.g, c.b); }
+
+}  // namespace tracer
