@@ -138,6 +138,23 @@ TEST_F(VulkanSampler, SamplesFollowTheDensity) {
   }
 }
 
+TEST_F(VulkanSampler, RefinedSamplesFollowTheDensity) {
+  // make_sampler with a refinement: the device samples the parts, the host brings them back.
+  for (const trs_test::Scenario& s : trs_test::scenarios()) {
+    const DensityMapView view = s.map.view();
+    auto sampler = make_sampler(s.mesh.view(), {&view, 1},
+                                {.backend = Backend::vulkan,
+                                 .cpu = {},
+                                 .vulkan = {.validation = true},
+                                 .refinement = {.min_acceptance = 0.9f, .min_texels = 1.0f}});
+    const Frame f = generate(*sampler, {.seed = s.seed, .target_count = s.target});
+    EXPECT_EQ(f.exhausted, 0u) << s.name;
+    ASSERT_EQ(f.counts.size(), s.mesh.indices.size() / 3) << s.name;
+    const auto result = trs_test::test_per_triangle(s, f.samples.span());
+    EXPECT_TRUE(result.passes(trs_test::kDistributionAlpha)) << s.name << "\n" << result.describe();
+  }
+}
+
 TEST_F(VulkanSampler, SameSamplesAsTheCpuWhereTheCountsAgree) {
   // Same Philox streams, same texel reads: a triangle given the same N_T and D_T^max by both
   // backends gets bit-identical samples (the unordered scan leaves their order unspecified).

@@ -16,19 +16,7 @@ bool has_suitable_gpu() {
   return false;
 }
 
-}  // namespace
-
-std::vector<std::string> vulkan_devices() {
-  std::vector<std::string> lines;
-  for (const vk::DeviceInfo& d : vk::Context::devices()) {
-    std::string line = std::to_string(d.index) + ": " + d.name;
-    if (!d.suitable) line += " (unsuitable: " + d.missing + ")";
-    lines.push_back(line);
-  }
-  return lines;
-}
-
-std::unique_ptr<Sampler> make_sampler(const MeshView& mesh, std::span<const DensityMapView> maps,
+std::unique_ptr<Sampler> make_backend(const MeshView& mesh, std::span<const DensityMapView> maps,
                                       const SamplerOptions& options) {
   switch (options.backend) {
     case Backend::cpu: return make_cpu_sampler(mesh, maps, options.cpu);
@@ -47,6 +35,27 @@ std::unique_ptr<Sampler> make_sampler(const MeshView& mesh, std::span<const Dens
       return make_cpu_sampler(mesh, maps, options.cpu);
   }
   return nullptr;
+}
+
+}  // namespace
+
+std::vector<std::string> vulkan_devices() {
+  std::vector<std::string> lines;
+  for (const vk::DeviceInfo& d : vk::Context::devices()) {
+    std::string line = std::to_string(d.index) + ": " + d.name;
+    if (!d.suitable) line += " (unsuitable: " + d.missing + ")";
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+std::unique_ptr<Sampler> make_sampler(const MeshView& mesh, std::span<const DensityMapView> maps,
+                                      const SamplerOptions& options) {
+  if (!(options.refinement.min_acceptance > 0.0f)) return make_backend(mesh, maps, options);
+  return make_refined_sampler(mesh, maps, options.refinement,
+                              [&](const MeshView& parts, std::span<const DensityMapView> m) {
+                                return make_backend(parts, m, options);
+                              });
 }
 
 const char* to_string(Backend backend) {

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "estimate.h"
@@ -35,7 +36,7 @@ struct QuadOverPlane {
   std::unique_ptr<Geometry> geometry;
   std::unique_ptr<Emitters> emitters;
 
-  QuadOverPlane() {
+  explicit QuadOverPlane(const lightsampler::SamplerOptions& sampler = trs_test::kCpuSampler) {
     Material light;
     light.base_color = glm::vec3(0.0f);
     light.emissive_factor = glm::vec3(1.0f, 0.9f, 0.8f);
@@ -48,7 +49,7 @@ struct QuadOverPlane {
                        {0.5f, -0.5f, 1}, emitter);
     trs_test::add_quad(scene, {-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}, floor);
     geometry = std::make_unique<Geometry>(scene.mesh);
-    emitters = std::make_unique<Emitters>(scene, trs_test::kCpuSampler);
+    emitters = std::make_unique<Emitters>(scene, sampler);
   }
 
   Ray ray() const { return {eye, glm::normalize(point - eye)}; }
@@ -127,6 +128,26 @@ TEST_F(AnalyticQuad, EveryStrategyConvergesToTheQuadrature) {
     const Estimate e = bench_->run(*s);
     EXPECT_TRUE(trs_test::agrees(e, expected_, kSigmas, kQuadratureSlack))
         << to_string(kind) << "\n" << trs_test::describe(e, expected_);
+  }
+}
+
+// The lights drawn from parts of the emitter's triangles (lightsampler/refinement.h), brought
+// back to the triangles: the same estimate; `power` reads the per-triangle integrals through it.
+TEST(RefinedLightSampler, TrsAndPowerConvergeToTheQuadrature) {
+  lightsampler::SamplerOptions sampler = trs_test::kCpuSampler;
+  sampler.refinement = {.min_acceptance = 0.9f, .min_texels = 1.0f};
+  const QuadOverPlane bench(sampler);
+  lightsampler::Frame frame;
+  bench.emitters->sampler().generate({.seed = 1, .target_count = 1000}, frame);
+  ASSERT_TRUE(std::any_of(frame.passes.begin(), frame.passes.end(),
+                          [](const lightsampler::PassTime& p) { return p.name == "refinement"; }))
+      << "the emitter was not split";
+  const glm::dvec3 expected = bench.expected();
+  for (StrategyKind kind : {StrategyKind::power, StrategyKind::trs}) {
+    auto s = strategy(*bench.emitters, kind);
+    const Estimate e = bench.run(*s);
+    EXPECT_TRUE(trs_test::agrees(e, expected, kSigmas, kQuadratureSlack))
+        << to_string(kind) << "\n" << trs_test::describe(e, expected);
   }
 }
 

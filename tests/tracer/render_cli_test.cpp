@@ -141,6 +141,7 @@ TEST_F(RenderCliTest, RendersEveryStrategy) {
     EXPECT_EQ(settings["max_depth"], 2);
     EXPECT_EQ(settings["threads"], 2);
     EXPECT_EQ(settings["backend"], "cpu");
+    EXPECT_EQ(settings["refine"], 0.5);
     EXPECT_EQ(stats["frames"], 2);
     EXPECT_EQ(stats["interrupted"], false);
     EXPECT_GT(stats["wall_seconds"].get<double>(), 0.0);
@@ -263,7 +264,8 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
   no_samples.insert(no_samples.end(), {"--spp", "0"});  // after tiny()'s --spp: the last wins
   for (const std::vector<std::string>& args :
        {tiny(kScene, {"--strategy", "magic", "--out", file("out.exr").string()}), no_samples,
-        tiny(kScene, {"--stats", file("out.json").string()})}) {
+        tiny(kScene, {"--stats", file("out.json").string()}),
+        tiny(kScene, {"--refine", "1.5", "--out", file("out.exr").string()})}) {
     const RunResult result = run(args);
     EXPECT_EQ(result.status, 2) << result.err;
     EXPECT_NE(result.err.find("trs-render: error: "), std::string::npos) << result.err;

@@ -36,4 +36,15 @@ inline const CLI::Validator kFiniteNonNegative(
     },
     "NUMBER >= 0");
 
+/// --refine: the light sampler's adaptive subdivision (lightsampler/refinement.h).
+inline CLI::Option* add_refine_option(CLI::App& app, lightsampler::Refinement& refinement) {
+  return app
+      .add_option("--refine", refinement.min_acceptance,
+                  "split triangles (at most into 4^8 parts, not below 4 texels) while the "
+                  "sampler's expected acceptance on them is below this; 0: sample the mesh as "
+                  "it is")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
+}
+
 }  // namespace trs

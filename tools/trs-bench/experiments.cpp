@@ -23,7 +23,8 @@ std::unique_ptr<Sampler> make_sampler(const Mesh& mesh, const DensityMap& map, B
   return lightsampler::make_sampler(mesh.view(), {&view, 1},
                                     {.backend = backend,
                                      .cpu = {settings.threads},
-                                     .vulkan = {.device = settings.vulkan_device}});
+                                     .vulkan = {.device = settings.vulkan_device},
+                                     .refinement = {}});
 }
 
 /// One sampler per backend the variants use, for one (mesh, map).

@@ -88,7 +88,10 @@ void print_backends(const ExperimentSettings& settings) {
     shown.push_back(v.backend);
     const auto sampler = lightsampler::make_sampler(
         {positions, uvs, indices, {}}, {&map, 1},
-        {.backend = v.backend, .cpu = {settings.threads}, .vulkan = {.device = settings.vulkan_device}});
+        {.backend = v.backend,
+         .cpu = {settings.threads},
+         .vulkan = {.device = settings.vulkan_device},
+         .refinement = {}});
     std::cout << "backend " << sampler->backend() << " on " << sampler->device();
     if (sampler->threads() > 0) std::cout << ", " << sampler->threads() << " threads";
     std::cout << "\n";

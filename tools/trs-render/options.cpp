@@ -58,6 +58,9 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
                  "on a GPU, else the native CPU backend")
       ->check(CLI::IsMember(names(kBackends)))
       ->capture_default_str();
+  // Refined by default: the same lights for a fraction of the sampler's work (docs/benchmarks.md).
+  r.sampler.refinement.min_acceptance = 0.5f;
+  add_refine_option(app, r.sampler.refinement);
   app.add_option("--device", r.sampler.vulkan.device,
                  "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE)");
   app.add_option("--stats", stats, "JSON summary of the run");

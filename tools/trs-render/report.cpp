@@ -20,21 +20,36 @@ struct SamplerTimes {
   double mean_ms = 0.0;
   double median_ms = 0.0;
   double mean_lights = 0.0;
+  double acceptance = 0.0;  ///< lights per candidate the rejection loops tried
   std::uint64_t exhausted = 0;
+  std::vector<lightsampler::PassTime> passes;  ///< mean per pass, in the sampler's order
 };
+
+void add_pass(std::vector<lightsampler::PassTime>& sums, const lightsampler::PassTime& pass) {
+  const auto same = [&](const lightsampler::PassTime& p) { return p.name == pass.name; };
+  if (auto it = std::find_if(sums.begin(), sums.end(), same); it != sums.end())
+    it->ms += pass.ms;
+  else
+    sums.push_back(pass);
+}
 
 SamplerTimes sampler_times(const tracer::RenderResult& result) {
   SamplerTimes t;
   const auto& frames = result.light_frames;
   if (frames.empty()) return t;
   std::vector<double> ms;
+  double candidates = 0.0;
   for (const tracer::LightFrame& f : frames) {
+    candidates += double(f.candidates);
     ms.push_back(f.sampler_ms);
     t.mean_ms += f.sampler_ms;
     t.mean_lights += double(f.lights);
     t.exhausted += f.exhausted;
+    for (const lightsampler::PassTime& p : f.passes) add_pass(t.passes, p);
   }
+  for (lightsampler::PassTime& p : t.passes) p.ms /= double(frames.size());
   t.mean_ms /= double(frames.size());
+  t.acceptance = candidates > 0.0 ? t.mean_lights / candidates : 0.0;
   t.mean_lights /= double(frames.size());
   std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
   t.median_ms = ms[ms.size() / 2];
@@ -85,6 +100,8 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
   const SamplerTimes sampler = sampler_times(result);
   nlohmann::json ms = nlohmann::json::array();
   for (const tracer::LightFrame& f : result.light_frames) ms.push_back(f.sampler_ms);
+  nlohmann::json passes = nlohmann::json::object();
+  for (const lightsampler::PassTime& p : sampler.passes) passes[p.name] = p.ms;
   return {
       {"settings",
        {{"scene", options.scene.string()},
@@ -97,7 +114,8 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"seed", r.seed},
         {"max_depth", r.max_depth},
         {"threads", r.threads},
-        {"backend", lightsampler::to_string(r.sampler.backend)}}},
+        {"backend", lightsampler::to_string(r.sampler.backend)},
+        {"refine", r.sampler.refinement.min_acceptance}}},
       {"frames", result.frames},
       {"interrupted", result.interrupted},
       {"light_sampler", result.light_device},
@@ -111,7 +129,9 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
       {"sampler_ms_per_frame", sampler.mean_ms},
       {"sampler_ms_median", sampler.median_ms},
       {"sampler_ms", ms},
+      {"sampler_passes_ms", passes},
       {"lights_per_frame", sampler.mean_lights},
+      {"acceptance_rate", sampler.acceptance},
       {"exhausted_lights", sampler.exhausted},
       {"invalid_paths", result.invalid_paths},
       {"relative_variance", relative_variance(result)},
@@ -138,6 +158,16 @@ void print_summary(std::ostream& out, const RenderOptions& options,
                   result.light_device.c_str(), sampler.mean_lights, sampler.mean_ms,
                   sampler.median_ms);
     out << line;
+    if (!sampler.passes.empty()) {
+      out << "    per pass:";
+      for (std::size_t i = 0; i < sampler.passes.size(); ++i) {
+        std::snprintf(line, sizeof line, "%s %s %.2f ms", i ? "," : "",
+                      sampler.passes[i].name.c_str(), sampler.passes[i].ms);
+        out << line;
+      }
+      std::snprintf(line, sizeof line, "; %.3g of the candidates accepted\n", sampler.acceptance);
+      out << line;
+    }
   }
   std::snprintf(line, sizeof line, "  relative variance per sample: %.4g\n",
                 relative_variance(result));

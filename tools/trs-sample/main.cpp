@@ -71,7 +71,8 @@ std::unique_ptr<lightsampler::Sampler> make_sampler(const MeshData& mesh,
     return lightsampler::make_sampler(mesh.view(), {&map, 1},
                                       {.backend = options.backend,
                                        .cpu = {.threads = options.threads},
-                                       .vulkan = {.device = options.device}});
+                                       .vulkan = {.device = options.device},
+                                       .refinement = options.refinement});
   } catch (const std::invalid_argument& e) {
     rethrow_naming_inputs(e, options);
   } catch (const std::length_error& e) {

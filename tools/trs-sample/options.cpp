@@ -71,6 +71,7 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
                  "or per-triangle (the paper's naive ablation)")
       ->check(CLI::IsMember(names(kCountings)))
       ->capture_default_str();
+  add_refine_option(app, options.refinement);
   app.add_option("--scan", scan, "cumulative sum of the per-triangle counts")
       ->check(CLI::IsMember(names(kScans)))
       ->capture_default_str();

@@ -50,6 +50,7 @@ nlohmann::ordered_json stats_json(const RunReport& run) {
   json["device"] = run.sampler.device();
   json["threads"] = run.sampler.threads();
   json["seed"] = run.options.seed;
+  json["refine"] = run.options.refinement.min_acceptance;
   json["target_count"] = run.options.target_count
                              ? nlohmann::ordered_json(*run.options.target_count)
                              : nlohmann::ordered_json(nullptr);

@@ -5,6 +5,7 @@
 #include "lightsampler/mesh.h"
 #include "lightsampler/overlap.h"
 #include "lightsampler/random.h"
+#include "lightsampler/refinement.h"
 #include "lightsampler/sample.h"
 #include "lightsampler/sampler.h"
 #include "lightsampler/triangle_map.h"

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "lightsampler/refinement.h"
 #include "lightsampler/sampler.h"
 
 namespace lightsampler {
@@ -40,10 +41,13 @@ struct SamplerOptions {
   Backend backend = Backend::automatic;
   CpuOptions cpu;
   VulkanOptions vulkan;
+  /// Adaptive subdivision before sampling (refinement.h); off by default.
+  Refinement refinement;
 };
 
 /// `automatic` takes the Vulkan backend when a suitable device exists, else the CPU backend;
-/// `vulkan` throws VulkanUnavailable rather than falling back.
+/// `vulkan` throws VulkanUnavailable rather than falling back. With a refinement, the backend
+/// samples the refined mesh (make_refined_sampler).
 std::unique_ptr<Sampler> make_sampler(const MeshView& mesh, std::span<const DensityMapView> maps,
                                       const SamplerOptions& options = {});
 

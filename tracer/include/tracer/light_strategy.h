@@ -7,8 +7,10 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
+#include <lightsampler/sampler.h>
 
 #include "tracer/emitters.h"
 
@@ -29,7 +31,9 @@ struct LightSample {
 struct LightFrame {
   double sampler_ms = 0.0;     ///< light-sampler time, milliseconds
   std::uint64_t lights = 0;    ///< point lights drawn
+  std::uint64_t candidates = 0;  ///< points the rejection loops tried
   std::uint64_t exhausted = 0; ///< lights that reached the sampler's rejection limit (biased)
+  std::vector<lightsampler::PassTime> passes;  ///< the sampler's time per pass
 };
 
 class LightStrategy {

@@ -48,6 +48,9 @@ class TrsStrategy : public LightStrategy {
     const std::uint64_t index = (std::uint64_t(random[0]) * n) >> 32;
     const lightsampler::Sample& s = frame_.samples.span()[index];
     const float p = pdf(s.triangle, s.b1, s.b2);
+    // A refined sampler's light, brought back to its triangle, can land an ulp across a texel
+    // edge onto a texel without density; it carries nothing.
+    if (!(p > 0.0f)) return std::nullopt;
     return LightSample{s.triangle, s.b1, s.b2, emitters_.position(s.triangle, s.b1, s.b2),
                        p * scale_, p};
   }
@@ -57,7 +60,7 @@ class TrsStrategy : public LightStrategy {
   }
 
   LightFrame last_frame() const override {
-    return {frame_.total_ms, frame_.sample_count, frame_.exhausted};
+    return {frame_.total_ms, frame_.sample_count, frame_.candidates, frame_.exhausted, frame_.passes};
   }
   std::string device() const override { return sampler_.backend() + ": " + sampler_.device(); }
 

@@ -1,0 +1,98 @@
+#pragma once
+// Adaptive subdivision of the mesh before sampling, the remedy the paper's Section 7 suggests
+// for triangles whose density is very uneven. A triangle's rejection loop accepts a candidate
+// with probability mean density / D_T^max; a large triangle under a sparse pattern (neon strokes,
+// a fine mosaic) accepts few. Splitting it into four at its edge midpoints, where that is low,
+// bounds each part by its own maximum. The samples are the same distribution (the parts are
+// counted exactly, like any triangle); only the work per sample drops.
+//
+// The subdivision is decided once, from the maps it is built with. A map updated later keeps the
+// same parts: still exact, only perhaps less efficient.
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "lightsampler/mesh.h"
+#include "lightsampler/sample.h"
+#include "lightsampler/sampler.h"
+
+namespace lightsampler {
+
+struct Refinement {
+  /// Split a triangle while its expected acceptance (mean density over D_T^max) is below this.
+  /// 0: no refinement.
+  float min_acceptance = 0.0f;
+  /// Never split a triangle that covers fewer texels than this: at the texel scale the density
+  /// is already constant, and parts only add counting work.
+  float min_texels = 4.0f;
+  /// Splits of one triangle at most (a triangle becomes at most 4^max_levels parts).
+  std::uint32_t max_levels = 8;
+  /// Parts in all at most; beyond it triangles stay as they are.
+  std::uint64_t max_triangles = std::uint64_t(1) << 24;
+};
+
+/// The subdivided mesh: parts of the caller's triangles, each with its own vertices, and the
+/// way back from a part to its triangle.
+class RefinedMesh {
+ public:
+  /// Throws as the samplers do on a bad mesh or map.
+  RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> maps,
+              const Refinement& refinement);
+
+  MeshView view() const { return {positions_, uvs_, indices_, triangle_maps_}; }
+  std::uint32_t triangle_count() const { return std::uint32_t(parents_.size()); }
+  /// The caller's triangle that part `part` lies in.
+  std::uint32_t parent(std::uint32_t part) const { return parents_[part]; }
+  /// A sample of the refined mesh as the same point of the caller's mesh.
+  Sample to_parent(const Sample& s) const;
+  /// Splitting rounds that split at least one triangle.
+  std::uint32_t levels() const { return levels_; }
+
+  struct Part {
+    std::uint32_t parent;
+    float corners[3][2];  ///< the part's vertices as (b1, b2) of the parent triangle
+  };
+
+ private:
+  void build(const MeshView& mesh, const std::vector<Part>& parts);
+
+  std::vector<Part> parts_;
+  std::vector<std::uint32_t> parents_;
+  std::vector<float> positions_;
+  std::vector<float> uvs_;
+  std::vector<std::uint32_t> indices_;
+  std::vector<std::uint32_t> triangle_maps_;
+  std::uint32_t levels_ = 0;
+};
+
+inline Sample RefinedMesh::to_parent(const Sample& s) const {
+  const Part& p = parts_[s.triangle];
+  float b[2];
+  for (int axis = 0; axis < 2; ++axis)
+    b[axis] = p.corners[0][axis] + s.b1 * (p.corners[1][axis] - p.corners[0][axis]) +
+              s.b2 * (p.corners[2][axis] - p.corners[0][axis]);
+  // Rounding can step an ulp outside the triangle.
+  b[0] = std::clamp(b[0], 0.0f, 1.0f);
+  b[1] = std::clamp(b[1], 0.0f, 1.0f - b[0]);
+  return {p.parent, b[0], b[1]};
+}
+
+/// Builds the backend that samples the parts (e.g. make_cpu_sampler over the given mesh).
+using SamplerFactory =
+    std::function<std::unique_ptr<Sampler>(const MeshView&, std::span<const DensityMapView>)>;
+
+/// A sampler over the caller's mesh that samples a refined copy of it. Samples, density(),
+/// texel(), and the Frame's per-triangle expected_counts, counts and max_density refer to the
+/// caller's triangles; cdf and inverse_permutation to the parts, which are what is processed.
+/// Samples are brought back to the caller's triangles on the host, so the Vulkan backend must
+/// read them back (FrameRequest::read_back).
+std::unique_ptr<Sampler> make_refined_sampler(const MeshView& mesh,
+                                              std::span<const DensityMapView> maps,
+                                              const Refinement& refinement,
+                                              const SamplerFactory& backend);
+
+}  // namespace lightsampler

@@ -1,0 +1,161 @@
+// The adaptive subdivision (lightsampler/refinement.h): its parts tile their triangles, a part's
+// sample is the same point of its triangle, the per-triangle outputs are unchanged, the work per
+// sample drops, and the samples still follow the density.
+//
+// Distribution hypothesis H0: samples brought back to the caller's triangles are distributed in
+// proportion to the density. Per-triangle chi-square (distribution_check.h) with the seeds of the
+// scenarios and trs_test::kDistributionAlpha. The parts' counts are rounded one by one, which
+// stratifies a triangle's samples: the multinomial statistic can only be smaller than under
+// i.i.d. sampling, so the test is conservative. It is shown to reject the same samples brought
+// back without the change of coordinates.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "distribution_check.h"
+#include "lightsampler/refinement.h"
+
+using namespace lightsampler;
+using trs_test::Scenario;
+
+namespace {
+
+// Splits freely, so that the tests see many levels.
+const Refinement kEager{.min_acceptance = 0.9f, .min_texels = 1.0f, .max_levels = 6};
+
+double triangle_area(const MeshView& mesh, std::uint32_t t) {
+  double p[3][3];
+  for (int k = 0; k < 3; ++k)
+    for (int a = 0; a < 3; ++a) p[k][a] = mesh.positions[3 * std::size_t(mesh.indices[3 * t + k]) + a];
+  double n[3];
+  for (int a = 0; a < 3; ++a) {
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    n[a] = (p[1][b] - p[0][b]) * (p[2][c] - p[0][c]) - (p[1][c] - p[0][c]) * (p[2][b] - p[0][b]);
+  }
+  return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+Frame generate(Sampler& sampler, const Scenario& s) {
+  Frame frame;
+  sampler.generate({.seed = s.seed, .target_count = s.target}, frame);
+  return frame;
+}
+
+std::unique_ptr<Sampler> refined_cpu_sampler(const Scenario& s, const DensityMapView& map,
+                                             const Refinement& refinement) {
+  return make_refined_sampler(s.mesh.view(), {&map, 1}, refinement,
+                              [](const MeshView& parts, std::span<const DensityMapView> maps) {
+                                return make_cpu_sampler(parts, maps);
+                              });
+}
+
+}  // namespace
+
+TEST(Refinement, LeavesAConstantDensityWhole) {
+  const trs_test::Mesh mesh = trs_test::quad(2, 1, 0, 0, 1, 1);
+  const trs_test::Map map{std::vector<float>(64 * 64, 0.5f), 64, 64};
+  const DensityMapView view = map.view();
+  const RefinedMesh refined(mesh.view(), {&view, 1}, kEager);
+  EXPECT_EQ(refined.levels(), 0u);
+  EXPECT_EQ(refined.triangle_count(), 2u);
+}
+
+TEST(Refinement, PartsTileTheirTriangles) {
+  for (const Scenario& s : trs_test::scenarios()) {
+    const DensityMapView view = s.map.view();
+    const RefinedMesh refined(s.mesh.view(), {&view, 1}, kEager);
+    ASSERT_GT(refined.levels(), 1u) << s.name;
+    std::vector<double> area(s.mesh.indices.size() / 3, 0.0);
+    for (std::uint32_t part = 0; part < refined.triangle_count(); ++part)
+      area[refined.parent(part)] += triangle_area(refined.view(), part);
+    for (std::uint32_t t = 0; t < area.size(); ++t)
+      EXPECT_NEAR(area[t], triangle_area(s.mesh.view(), t), 1e-5 * area[t]) << s.name << ", " << t;
+  }
+}
+
+TEST(Refinement, APartsSampleIsTheSamePointOfItsTriangle) {
+  const Scenario s = trs_test::scenarios()[0];
+  const DensityMapView view = s.map.view();
+  const RefinedMesh refined(s.mesh.view(), {&view, 1}, kEager);
+  for (std::uint32_t part = 0; part < refined.triangle_count(); ++part)
+    for (const auto& [b1, b2] : {std::pair{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}, {0.2f, 0.7f}}) {
+      const Sample local{part, b1, b2};
+      const Sample back = refined.to_parent(local);
+      ASSERT_EQ(back.triangle, refined.parent(part));
+      ASSERT_GE(back.b1, 0.0f);
+      ASSERT_GE(back.b2, 0.0f);
+      ASSERT_LE(back.b1 + back.b2, 1.0f);
+      const Float3 p = position(refined.view(), local), q = position(s.mesh.view(), back);
+      const Float2 u = uv(refined.view(), local), w = uv(s.mesh.view(), back);
+      EXPECT_NEAR(p.x, q.x, 1e-5f);
+      EXPECT_NEAR(p.y, q.y, 1e-5f);
+      EXPECT_NEAR(p.z, q.z, 1e-5f);
+      EXPECT_NEAR(u.x, w.x, 1e-5f);
+      EXPECT_NEAR(u.y, w.y, 1e-5f);
+    }
+}
+
+TEST(Refinement, PerTriangleOutputsAreTheTrianglesOwn) {
+  for (const Scenario& s : trs_test::scenarios()) {
+    const DensityMapView view = s.map.view();
+    const Frame plain = generate(*make_cpu_sampler(s.mesh.view(), {&view, 1}), s);
+    const Frame refined = generate(*refined_cpu_sampler(s, view, kEager), s);
+    ASSERT_EQ(refined.expected_counts.size(), plain.expected_counts.size()) << s.name;
+    EXPECT_NEAR(refined.expected_total, plain.expected_total, 1e-5 * plain.expected_total);
+    std::uint64_t total = 0;
+    for (std::size_t t = 0; t < plain.expected_counts.size(); ++t) {
+      EXPECT_NEAR(refined.expected_counts[t], plain.expected_counts[t],
+                  1e-5 * plain.expected_counts[t] + 1e-12)
+          << s.name << ", triangle " << t;
+      // A part's maximum is one of its triangle's texels, and some part holds the largest.
+      EXPECT_EQ(refined.max_density[t], plain.max_density[t]) << s.name << ", triangle " << t;
+      total += refined.counts[t];
+    }
+    EXPECT_EQ(total, refined.sample_count) << s.name;
+    for (const Sample& x : refined.samples) ASSERT_LT(x.triangle, plain.expected_counts.size());
+  }
+}
+
+TEST(Refinement, RaisesTheAcceptance) {
+  // Two large triangles under two thin strokes (neon-like): few candidates land on them unless
+  // the triangles are split around them. (A map without spatial structure, texel noise, gains
+  // little: every part still sees bright and dark texels.)
+  const trs_test::Mesh mesh = trs_test::quad(2, 1, 0, 0, 1, 1);
+  trs_test::Map map{std::vector<float>(128 * 64, 0.0f), 128, 64};
+  for (std::uint32_t x = 10; x < 110; ++x) map.texels[20 * 128 + x] = map.texels[21 * 128 + x] = 1.0f;
+  for (std::uint32_t y = 5; y < 60; ++y) map.texels[y * 128 + 70] = 2.0f;
+  const DensityMapView view = map.view();
+  const Scenario s{"strokes", mesh, map, 1e5, 7};
+  const Frame plain = generate(*make_cpu_sampler(mesh.view(), {&view, 1}), s);
+  const Frame refined = generate(*refined_cpu_sampler(s, view, {.min_acceptance = 0.5f}), s);
+  const double before = double(plain.sample_count) / double(plain.candidates);
+  const double after = double(refined.sample_count) / double(refined.candidates);
+  EXPECT_LT(before, 0.05);
+  EXPECT_GT(after, 0.3);
+}
+
+TEST(Refinement, SamplesMatchTheDensity) {
+  for (const Scenario& s : trs_test::scenarios()) {
+    const DensityMapView view = s.map.view();
+    const Frame frame = generate(*refined_cpu_sampler(s, view, kEager), s);
+    const auto result = trs_test::test_per_triangle(s, frame.samples.span());
+    EXPECT_GT(result.dof, 100) << s.name << ": too few cells to have power";
+    EXPECT_TRUE(result.passes(trs_test::kDistributionAlpha)) << s.name << "\n" << result.describe();
+  }
+}
+
+TEST(Refinement, RejectsPartSamplesKeptInThePartsCoordinates) {
+  const Scenario s = trs_test::scenarios()[2];
+  const DensityMapView view = s.map.view();
+  const RefinedMesh refined(s.mesh.view(), {&view, 1}, kEager);
+  Frame frame;
+  make_cpu_sampler(refined.view(), {&view, 1})->generate({.seed = s.seed, .target_count = s.target}, frame);
+  std::vector<Sample> right, wrong;
+  for (const Sample& x : frame.samples) {
+    right.push_back(refined.to_parent(x));
+    wrong.push_back({refined.parent(x.triangle), x.b1, x.b2});
+  }
+  EXPECT_TRUE(trs_test::test_per_triangle(s, right).passes(trs_test::kDistributionAlpha));
+  EXPECT_FALSE(trs_test::test_per_triangle(s, wrong).passes(trs_test::kDistributionAlpha));
+}
