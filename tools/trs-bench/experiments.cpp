@@ -24,7 +24,7 @@ std::unique_ptr<Sampler> make_sampler(const Mesh& mesh, const DensityMap& map, B
                                     {.backend = backend,
                                      .cpu = {settings.threads},
                                      .vulkan = {.device = settings.vulkan_device},
-                                     .refinement = {}});
+                                     .refinement = settings.refinement});
 }
 
 /// One sampler per backend the variants use, for one (mesh, map).
@@ -49,7 +49,8 @@ FrameRequest request_for(const Variant& v) {
 }
 
 CaseResult describe_case(const char* experiment, const Mesh& mesh, const DensityMap& map,
-                         const Sampler& sampler, const FrameRequest& request, const std::string& engine) {
+                         const Sampler& sampler, const FrameRequest& request, const std::string& engine,
+                         float refine) {
   CaseResult r;
   r.experiment = experiment;
   r.mesh = mesh.name;
@@ -63,6 +64,7 @@ CaseResult describe_case(const char* experiment, const Mesh& mesh, const Density
   r.engine = engine;
   r.device = sampler.device();
   r.threads = sampler.threads();
+  r.refine = refine;
   return r;
 }
 
@@ -113,7 +115,8 @@ void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& set
           Sampler& sampler = samplers.of(variant);
           FrameRequest request = request_for(variant);
           request.target_count = target;
-          CaseResult result = describe_case("sampling", mesh, map, sampler, request, variant.engine());
+          CaseResult result = describe_case("sampling", mesh, map, sampler, request, variant.engine(),
+                                            settings.refinement.min_acceptance);
           const std::optional<double> estimate = series[k].estimate_ms(target);
           if (estimate && *estimate > settings.measure.budget_s * 1e3) {
             result.estimate_ms = *estimate;
@@ -144,7 +147,8 @@ void run_scan_experiment(const Inputs& inputs, const ExperimentSettings& setting
           request.scan = scan;
           request.realize = false;
           request.read_back = false;
-          CaseResult result = describe_case("scan", mesh, map, *sampler, request, sampler->backend());
+          CaseResult result = describe_case("scan", mesh, map, *sampler, request, sampler->backend(),
+                                            settings.refinement.min_acceptance);
           result.measured = measure(*sampler, frame, request, kFirstSeed, settings.measure);
           result.scan = result.measured->scan_used;
           recorder.add(std::move(result));

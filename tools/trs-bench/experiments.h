@@ -36,6 +36,7 @@ struct ExperimentSettings {
   unsigned threads = 0;  ///< 0: every hardware thread
   MeasureSettings measure;
   double scan_target = 1e6;  ///< target of the scan comparison's frames
+  lightsampler::Refinement refinement;  ///< the samplers' adaptive subdivision (off: the paper's)
 };
 
 /// Every mesh x map x count x variant. A case whose frame time, extrapolated from the previous

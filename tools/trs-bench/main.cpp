@@ -11,6 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/cli_options.h"
 #include "experiments.h"
 
 namespace {
@@ -185,6 +186,7 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::IsMember({"raster", "compute", "per-triangle"}))
       ->capture_default_str();
+  trs::add_refine_option(app, cl.settings.refinement);
   app.add_option("--device", cl.settings.vulkan_device,
                  "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE)");
   app.add_option("--experiments", cl.experiments,

@@ -108,7 +108,7 @@ std::string csv_text(const std::vector<CaseResult>& results) {
       "experiment,mesh,triangles,map,map_size,method,scan,target,status,runs,samples,candidates,"
       "acceptance,exhausted";
   for (const auto& name : passes) text += "," + name + "_ms";
-  text += ",total_ms,wall_ms,samples_per_s,threads,backend,engine,device,estimate_ms\n";
+  text += ",total_ms,wall_ms,samples_per_s,threads,backend,engine,device,estimate_ms,refine\n";
   for (const auto& r : results) {
     text += r.experiment + "," + r.mesh + "," + std::to_string(r.triangles) + "," + r.map + "," +
             std::to_string(r.map_size) + "," + r.method + "," + r.scan + "," +
@@ -129,7 +129,7 @@ std::string csv_text(const std::vector<CaseResult>& results) {
     }
     text += format(",%u,", r.threads) + csv_quote(r.backend) + ',' + csv_quote(r.engine) + ',' +
             csv_quote(r.device) + ',';
-    text += (r.measured ? "" : format("%.6g", r.estimate_ms)) + '\n';
+    text += (r.measured ? "" : format("%.6g", r.estimate_ms)) + format(",%g\n", r.refine);
   }
   return text;
 }

@@ -27,6 +27,7 @@ struct CaseResult {
   std::string engine;  ///< backend and counting path, e.g. "cpu", "vk/raster"
   std::string device;
   unsigned threads = 0;
+  float refine = 0;  ///< the sampler's Refinement::min_acceptance (0: none)
   std::optional<Measurement> measured;  ///< empty: skipped
   double estimate_ms = 0;               ///< for a skipped case: its extrapolated frame time
 };
