@@ -61,6 +61,19 @@ TEST(Refinement, LeavesAConstantDensityWhole) {
   EXPECT_EQ(refined.triangle_count(), 2u);
 }
 
+TEST(Refinement, KeepsToItsBudget) {
+  const Scenario s = trs_test::scenarios()[2];  // two triangles
+  const DensityMapView view = s.map.view();
+  Refinement budget = kEager;
+  budget.max_triangles = 50;
+  const RefinedMesh refined(s.mesh.view(), {&view, 1}, budget);
+  EXPECT_GT(refined.levels(), 1u);
+  EXPECT_LE(refined.triangle_count(), 50u);
+  EXPECT_GT(refined.triangle_count(), 40u);  // it uses the budget
+  budget.max_levels = 1;
+  EXPECT_EQ(RefinedMesh(s.mesh.view(), {&view, 1}, budget).triangle_count(), 8u);
+}
+
 TEST(Refinement, PartsTileTheirTriangles) {
   for (const Scenario& s : trs_test::scenarios()) {
     const DensityMapView view = s.map.view();
