@@ -5,6 +5,7 @@
 
 #include "cpu/passes.h"
 #include "host_scene.h"
+#include "validate.h"
 
 namespace lightsampler {
 
@@ -48,8 +49,9 @@ double texel_area(const cpu::TexelTriangle& t) {
 
 RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> maps,
                          const Refinement& refinement) {
-  const HostScene input(mesh, maps);  // validates
-  std::vector<Part> open(input.triangles().size()), done, next;
+  validate_mesh(mesh, maps.size());
+  for (std::size_t i = 0; i < maps.size(); ++i) validate_map(maps[i], i);
+  std::vector<Part> open(mesh.indices.size() / 3), done, next;
   for (std::uint32_t t = 0; t < open.size(); ++t) open[t] = {t, {{0, 0}, {1, 0}, {0, 1}}};
   Buffer<double> expected;
   Buffer<float> max_density;
@@ -81,8 +83,6 @@ RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> m
                    [](const Part& a, const Part& b) { return a.parent < b.parent; });
   parts_ = std::move(done);
   build(mesh, parts_);
-  parents_.resize(parts_.size());
-  for (std::size_t i = 0; i < parts_.size(); ++i) parents_[i] = parts_[i].parent;
 }
 
 void RefinedMesh::build(const MeshView& mesh, const std::vector<Part>& parts) {

@@ -38,19 +38,19 @@ SamplerTimes sampler_times(const tracer::RenderResult& result) {
   const auto& frames = result.light_frames;
   if (frames.empty()) return t;
   std::vector<double> ms;
-  double candidates = 0.0;
+  double lights = 0.0, candidates = 0.0;
   for (const tracer::LightFrame& f : frames) {
+    lights += double(f.lights);
     candidates += double(f.candidates);
     ms.push_back(f.sampler_ms);
     t.mean_ms += f.sampler_ms;
-    t.mean_lights += double(f.lights);
     t.exhausted += f.exhausted;
     for (const lightsampler::PassTime& p : f.passes) add_pass(t.passes, p);
   }
   for (lightsampler::PassTime& p : t.passes) p.ms /= double(frames.size());
   t.mean_ms /= double(frames.size());
-  t.acceptance = candidates > 0.0 ? t.mean_lights / candidates : 0.0;
-  t.mean_lights /= double(frames.size());
+  t.acceptance = candidates > 0.0 ? lights / candidates : 0.0;
+  t.mean_lights = lights / double(frames.size());
   std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
   t.median_ms = ms[ms.size() / 2];
   return t;

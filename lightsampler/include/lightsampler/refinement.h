@@ -44,9 +44,9 @@ class RefinedMesh {
               const Refinement& refinement);
 
   MeshView view() const { return {positions_, uvs_, indices_, triangle_maps_}; }
-  std::uint32_t triangle_count() const { return std::uint32_t(parents_.size()); }
+  std::uint32_t triangle_count() const { return std::uint32_t(parts_.size()); }
   /// The caller's triangle that part `part` lies in.
-  std::uint32_t parent(std::uint32_t part) const { return parents_[part]; }
+  std::uint32_t parent(std::uint32_t part) const { return parts_[part].parent; }
   /// A sample of the refined mesh as the same point of the caller's mesh.
   Sample to_parent(const Sample& s) const;
   /// Splitting rounds that split at least one triangle.
@@ -61,7 +61,6 @@ class RefinedMesh {
   void build(const MeshView& mesh, const std::vector<Part>& parts);
 
   std::vector<Part> parts_;
-  std::vector<std::uint32_t> parents_;
   std::vector<float> positions_;
   std::vector<float> uvs_;
   std::vector<std::uint32_t> indices_;
