@@ -1,5 +1,25 @@
 // Shared by every pass: extensions, buffer types reached by device address, and the GPU twins
 // of the CPU backend's texel lookup (cpu/density.h) and sampling helpers.
+//
+// Rules every shader keeps (GLSL 4.60, SPIR-V 1.5, Vulkan 1.2): what one driver forgives,
+// another does not.
+// - No signed % or / with an operand that may be negative: the result is undefined (lavapipe
+//   returns C's remainder, NVIDIA does not). Reduce magnitudes in unsigned arithmetic.
+// - No shift by the operand's bit width or more.
+// - Float-to-integer conversions only of values known to be in range: texel coordinates are,
+//   because the library bounds UVs by 2^24 and map sides by 2^32; counts are clamped first.
+// - Every variable and shared element is written before it is read.
+// - barrier() only where the whole workgroup gets there: in loops whose trip count is
+//   workgroup-uniform, never under a per-invocation condition.
+// - No subgroup size assumed (lavapipe 8, NVIDIA 32, AMD 64, Intel 8 to 32), and no reliance on
+//   reconvergence beyond SPIR-V's rule: control flow uniform on entry to a selection or loop
+//   reconverges at its merge block. Subgroup operations therefore run either at the top level
+//   of main (after such constructs), or inside loops whose trip count is subgroup-uniform,
+//   with a per-invocation predicate instead of divergent control flow. A ballot's find-LSB is
+//   read only when the ballot is known to be non-empty.
+// - A later dispatch sees an earlier one's writes only through a pipeline barrier recorded
+//   between them (Commands::barrier); the host reads results after the fence, from memory the
+//   last barrier made host-visible. Atomics go only to device-local memory.
 #ifndef LIGHTSAMPLER_COMMON_GLSL
 #define LIGHTSAMPLER_COMMON_GLSL
 
@@ -30,11 +50,13 @@ Uint64s uint64_at(uint64_t base, uint64_t i) { return Uint64s(base + i * 8ul); }
 
 // ---- texel lookup (cpu/density.h: address, cell_density, floor_to_int, point_density) ----
 
+// Cell i of any sign, wrapped or clamped into [0, n). Wrap reduces |i| in unsigned arithmetic:
+// for i < 0, the cell -1 - k (k >= 0) wraps to n - 1 - (k mod n).
 uint address(int64_t i, uint n, uint addressing) {
   if (i >= 0l && i < int64_t(n)) return uint(i);
   if (addressing == kAddressClamp) return i < 0l ? 0u : n - 1u;
-  int64_t r = i % int64_t(n);
-  return uint(r < 0l ? r + int64_t(n) : r);
+  if (i >= 0l) return uint(uint64_t(i) % uint64_t(n));
+  return n - 1u - uint(uint64_t(-(i + 1l)) % uint64_t(n));
 }
 
 float cell_density(GpuMap map, uint64_t texels, int64_t ix, int64_t iy) {
@@ -43,6 +65,7 @@ float cell_density(GpuMap map, uint64_t texels, int64_t ix, int64_t iy) {
   return Floats(texels).v[index] * map.scale;
 }
 
+// x is a texel coordinate, |x| < 2^56 (see the rules above), so the conversion is defined.
 int64_t floor_to_int(float x) {
   int64_t i = int64_t(x);  // truncates toward zero
   return float(i) > x ? i - 1l : i;

@@ -37,7 +37,9 @@ void accumulate(uint64_t expected, uint64_t max_density, uint tri, float contrib
   if (subgroupAllEqual(tri)) {
     float sum = subgroupAdd(contribution);
     float bound = subgroupMax(density);
-    if (gl_SubgroupInvocationID == subgroupBallotFindLSB(subgroupBallot(writer))) {
+    // The lowest writer adds for the subgroup; with no writer the ballot is empty and its
+    // find-LSB undefined, so `writer` is tested first.
+    if (writer && gl_SubgroupInvocationID == subgroupBallotFindLSB(subgroupBallot(writer))) {
       if (sum > 0.0) atomicAdd(Floats(expected).v[tri], sum);
       if (bound > 0.0) atomic_max_float(Uints(max_density), tri, bound);
     }
@@ -69,8 +71,13 @@ int classify(TexelTriangle tt, dvec2 lo, dvec2 hi) {
 // texel area to world area. Returns the density read, zero where the overlap is empty.
 float cell_contribution(GpuTriangle t, TexelTriangle tt, GpuMap map, uint64_t texels, int64_t ix,
                         int64_t iy, out float density) {
+  // Cells beyond the bounding box (the raster path's dilation reaches them) only touch the
+  // triangle: the CPU backend never visits them, and the closed form's rounding could give one
+  // a positive overlap and raise D_T^max.
+  bool in_box = ix >= tt.first_x && iy >= tt.first_y && uint64_t(ix - tt.first_x) < tt.columns &&
+                uint64_t(iy - tt.first_y) < tt.rows;
   dvec2 lo = dvec2(double(ix), double(iy)), hi = lo + dvec2(1.0lf);
-  int where = classify(tt, lo, hi);
+  int where = in_box ? classify(tt, lo, hi) : -1;
   double overlap = where < 0 ? 0.0lf
                  : where > 0 ? 1.0lf
                              : rect_triangle_overlap(dvec2(tt.a), dvec2(tt.b), dvec2(tt.c), lo, hi);

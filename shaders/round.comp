@@ -16,7 +16,9 @@ void main() {
   uvec2 key = uvec2(p.key0, p.key1);
   uint64_t sum = 0ul;
   for (uint64_t i = thread_index(); i < uint64_t(p.triangle_count); i += thread_count()) {
-    double x = scale * double(Floats(p.expected).v[uint(i)]);
+    // At most 2^63, so the conversion below is defined: a larger total (a float sum that
+    // overflowed) is refused by the host after this pass, whatever the counts.
+    double x = min(scale * double(Floats(p.expected).v[uint(i)]), 9223372036854775808.0lf);
     double whole = floor(x);
     uvec4 r = philox4x32(uvec4(uint(i), 0u, 0u, 0u), key);
     double u = double(((uint64_t(r.x) << 32) | uint64_t(r.y)) >> 11) * (1.0 / 9007199254740992.0);

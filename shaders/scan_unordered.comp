@@ -9,20 +9,28 @@
 layout(local_size_x = kWorkgroupSize) in;
 layout(push_constant) uniform Push { ScanPush p; };
 
+// The loop runs the same number of times on every invocation of a workgroup (its bound steps
+// by whole workgroups), so the subgroup operations inside see whole subgroups; `live` marks the
+// invocations that have an element.
 void main() {
-  uint64_t sum_mask = (1ul << p.sum_bits) - 1ul;
-  for (uint64_t i = thread_index(); i < p.count; i += thread_count()) {
-    uint64_t element = uint64_at(p.source, i).v[0];
+  uint64_t sum_mask = (1ul << p.sum_bits) - 1ul;  // sum_bits is at most 63 (the host's choice)
+  uint64_t group_first = uint64_t(gl_WorkGroupID.x) * kWorkgroupSize;
+  for (uint64_t base = group_first; base < p.count; base += thread_count()) {
+    uint64_t i = base + gl_LocalInvocationID.x;
+    bool live = i < p.count;
+    uint64_t element = live ? uint64_at(p.source, i).v[0] : 0ul;
     uint64_t prefix = subgroupExclusiveAdd(element);
     uint64_t subgroup_sum = subgroupAdd(element);
-    uvec4 lanes = subgroupBallot(true);
+    uvec4 lanes = subgroupBallot(live);
     uint64_t packed = 0ul;
     if (subgroupElect())
       packed = atomicAdd(Totals(p.totals).t.scan_counter,
                          subgroup_sum + (uint64_t(subgroupBallotBitCount(lanes)) << p.sum_bits));
     packed = subgroupBroadcastFirst(packed);
-    uint64_t slot = (packed >> p.sum_bits) + uint64_t(subgroupBallotExclusiveBitCount(lanes));
-    uint64_at(p.result, slot).v[0] = (packed & sum_mask) + prefix + element;
-    Uints(p.inverse).v[uint(slot)] = uint(i);
+    if (live) {
+      uint64_t slot = (packed >> p.sum_bits) + uint64_t(subgroupBallotExclusiveBitCount(lanes));
+      uint64_at(p.result, slot).v[0] = (packed & sum_mask) + prefix + element;
+      Uints(p.inverse).v[uint(slot)] = uint(i);
+    }
   }
 }

@@ -84,7 +84,8 @@ struct RasterPush {
   float origin_x, origin_y;  // texel-space coordinate of the viewport's corner
   float width, height;       // viewport size in texels
   uint map;                  // the map whose triangles this draw rasterizes
-  uint pad0;
+  float dilation;            // geometry-shader path: margin beyond half a texel, in texels, for
+                             // vertex snapping and float rounding
 };
 
 struct RoundPush {

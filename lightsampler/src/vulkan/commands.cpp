@@ -20,8 +20,7 @@ void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags src_stages, VkAcce
 
 void Context::State::submit_and_wait(VkCommandBuffer cmd) {
   check(vkResetFences(device.handle, 1, &fence), "vkResetFences");
-  const VkSubmitInfo submit{.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &cmd};
-  check(vkQueueSubmit(queue, 1, &submit, fence), "vkQueueSubmit");
+  device.submit(cmd, fence);
   check(vkWaitForFences(device.handle, 1, &fence, VK_TRUE, std::numeric_limits<std::uint64_t>::max()),
         "vkWaitForFences");
 }
@@ -38,7 +37,7 @@ void Context::State::run_transfer(const std::function<void(VkCommandBuffer)>& re
 // Every Commands uses the same query slots (0 at begin(), then one per stamp). That is safe because
 // each query is reset right before it is written and read back before submit() returns.
 void Context::State::write_timestamp(VkCommandBuffer cmd, std::uint32_t slot) {
-  if (timestamp_mask == 0) return;
+  if (device.timestamp_mask == 0) return;
   const std::uint32_t pool = slot / kQueriesPerPool, query = slot % kQueriesPerPool;
   while (query_pools.size() <= pool) {
     const VkQueryPoolCreateInfo info{.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
@@ -92,11 +91,11 @@ std::vector<std::pair<std::string, double>> Context::submit(Commands& c) {
 
   std::vector<std::pair<std::string, double>> times;
   const std::uint32_t stamps = std::uint32_t(c.stamps_.size());
-  const auto ticks = s.timestamp_mask != 0 ? s.read_timestamps(stamps + 1) : std::vector<std::uint64_t>();
+  const auto ticks = s.device.timestamp_mask != 0 ? s.read_timestamps(stamps + 1) : std::vector<std::uint64_t>();
   for (std::uint32_t i = 0; i < stamps; ++i) {
     const double ms = ticks.empty() ? std::nan("")
-                                    : double((ticks[i + 1] - ticks[i]) & s.timestamp_mask) *
-                                          s.capabilities.timestamp_period_ns * 1e-6;
+                                    : double((ticks[i + 1] - ticks[i]) & s.device.timestamp_mask) *
+                                          s.device.capabilities.timestamp_period_ns * 1e-6;
     times.emplace_back(std::move(c.stamps_[i]), ms);
   }
   Commands finished(std::move(c));  // frees the command buffer
@@ -125,7 +124,7 @@ Commands::~Commands() {
 }
 
 void Commands::dispatch(const ComputePipeline& p, const void* push, std::uint32_t push_size, std::uint32_t groups) {
-  const std::uint32_t limit = context_->state_->capabilities.max_workgroup_count_x;
+  const std::uint32_t limit = context_->state_->device.capabilities.max_workgroup_count_x;
   if (groups > limit)
     throw std::invalid_argument("dispatch of " + std::to_string(groups) + " workgroups; the device allows " +
                                 std::to_string(limit));
@@ -139,14 +138,14 @@ void Commands::draw(const RasterPipeline& p, const void* push, std::uint32_t pus
   const Context::State& s = *context_->state_;
   const VkRect2D area{{0, 0}, {width, height}};
   const VkRenderingInfo rendering{.sType = VK_STRUCTURE_TYPE_RENDERING_INFO, .renderArea = area, .layerCount = 1};
-  s.begin_rendering(cmd_, &rendering);
+  s.device.begin_rendering(cmd_, &rendering);
   vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_GRAPHICS, p.handle());
   if (push_size > 0) vkCmdPushConstants(cmd_, p.layout(), p.push_stages_, 0, push_size, push);
   const VkViewport viewport{0.0f, 0.0f, float(width), float(height), 0.0f, 1.0f};
   vkCmdSetViewport(cmd_, 0, 1, &viewport);
   vkCmdSetScissor(cmd_, 0, 1, &area);
   vkCmdDraw(cmd_, vertices, 1, 0, 0);
-  s.end_rendering(cmd_);
+  s.device.end_rendering(cmd_);
 }
 
 void Commands::fill(const Buffer& b, VkDeviceSize offset, VkDeviceSize size, std::uint32_t value) {

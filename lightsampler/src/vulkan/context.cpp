@@ -12,15 +12,6 @@
 namespace lightsampler::vk {
 
 namespace {
-// Debug builds of the library run with the validation layer (when installed), as tests do.
-#ifdef NDEBUG
-constexpr bool kDebugBuild = false;
-#else
-constexpr bool kDebugBuild = true;
-#endif
-}  // namespace
-
-namespace {
 
 // Transfers larger than this go through the staging buffer in pieces, so it stays small.
 constexpr VkDeviceSize kStagingBytes = VkDeviceSize(64) << 20;
@@ -53,107 +44,32 @@ void check_range(const Buffer& b, VkDeviceSize offset, VkDeviceSize bytes, const
 
 }  // namespace
 
-DeviceHandle::~DeviceHandle() {
-  if (handle != VK_NULL_HANDLE) vkDestroyDevice(handle, nullptr);
-}
-
-void Context::State::create_device(const DeviceSurvey& d) {
-  physical = d.handle;
-  name = d.info.name;
-  raster_missing = d.raster_missing;
-  max_push_size = d.properties.limits.maxPushConstantsSize;
-  vkGetPhysicalDeviceMemoryProperties(physical, &memory);
-  capabilities = {.subgroup_size = d.subgroup_size,
-                  .conservative_rasterization = d.conservative_rasterization,
-                  .timestamp_period_ns = d.properties.limits.timestampPeriod,
-                  .max_workgroup_count_x = d.properties.limits.maxComputeWorkGroupCount[0],
-                  .max_buffer_size = d.max_buffer_size,
-                  .raster = d.raster_missing.empty(),
-                  .geometry_shader = d.raster_missing.empty() && d.features.geometryShader};
-  timestamp_mask = d.timestamp_bits >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << d.timestamp_bits) - 1;
-
-  // Required features (checked by the survey), plus optional ones the passes use where present.
-  VkPhysicalDeviceShaderAtomicFloatFeaturesEXT atomic_float{
-      .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT,
-      .shaderBufferFloat32Atomics = d.atomic_float.shaderBufferFloat32Atomics,
-      .shaderBufferFloat32AtomicAdd = VK_TRUE,
-      .shaderSharedFloat32Atomics = d.atomic_float.shaderSharedFloat32Atomics,
-      .shaderSharedFloat32AtomicAdd = d.atomic_float.shaderSharedFloat32AtomicAdd};
-  VkPhysicalDeviceDynamicRenderingFeatures dynamic_rendering{
-      .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DYNAMIC_RENDERING_FEATURES,
-      .pNext = &atomic_float,
-      .dynamicRendering = VK_TRUE};
-  VkPhysicalDeviceVulkan13Features features13{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES,
-                                              .pNext = &atomic_float,
-                                              .dynamicRendering = d.dynamic_rendering};
-  const bool core13 = d.api_version >= VK_API_VERSION_1_3;
-  VkPhysicalDeviceVulkan12Features features12{
-      .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
-      .pNext = core13 ? static_cast<void*>(&features13)
-               : d.dynamic_rendering_extension ? static_cast<void*>(&dynamic_rendering)
-                                               : static_cast<void*>(&atomic_float),
-      .shaderBufferInt64Atomics = VK_TRUE,
-      .shaderSharedInt64Atomics = d.features12.shaderSharedInt64Atomics,
-      .shaderSubgroupExtendedTypes = d.features12.shaderSubgroupExtendedTypes,
-      .bufferDeviceAddress = VK_TRUE};
-  VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &features12};
-  features.features.shaderInt64 = VK_TRUE;
-  features.features.shaderFloat64 = d.features.shaderFloat64;
-  features.features.geometryShader = d.features.geometryShader;
-  features.features.fragmentStoresAndAtomics = d.features.fragmentStoresAndAtomics;
-  features.features.vertexPipelineStoresAndAtomics = d.features.vertexPipelineStoresAndAtomics;
-
-  std::vector<const char*> extensions{VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME};
-  if (d.dynamic_rendering_extension) extensions.push_back(VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
-  if (d.conservative_rasterization) extensions.push_back(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
-
-  const float priority = 1.0f;
-  const VkDeviceQueueCreateInfo queue_info{.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
-                                           .queueFamilyIndex = d.queue_family,
-                                           .queueCount = 1,
-                                           .pQueuePriorities = &priority};
-  const VkDeviceCreateInfo info{.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
-                                .pNext = &features,
-                                .queueCreateInfoCount = 1,
-                                .pQueueCreateInfos = &queue_info,
-                                .enabledExtensionCount = std::uint32_t(extensions.size()),
-                                .ppEnabledExtensionNames = extensions.data()};
-  check(vkCreateDevice(physical, &info, nullptr, &device.handle), "vkCreateDevice");
-  vkGetDeviceQueue(device.handle, d.queue_family, 0, &queue);
-  if (d.dynamic_rendering) {
-    const char* suffix = core13 ? "" : "KHR";
-    begin_rendering = reinterpret_cast<PFN_vkCmdBeginRendering>(
-        vkGetDeviceProcAddr(device.handle, (std::string("vkCmdBeginRendering") + suffix).c_str()));
-    end_rendering = reinterpret_cast<PFN_vkCmdEndRendering>(
-        vkGetDeviceProcAddr(device.handle, (std::string("vkCmdEndRendering") + suffix).c_str()));
-  }
-
+Context::State::State(Device& d) : device(d) {
   // Resettable buffers: the transfer buffer is re-recorded for every upload and download.
   const VkCommandPoolCreateInfo pool_info{.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
                                           .flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT,
                                           .queueFamilyIndex = d.queue_family};
-  check(vkCreateCommandPool(device.handle, &pool_info, nullptr, &command_pool), "vkCreateCommandPool");
+  check(vkCreateCommandPool(d.handle, &pool_info, nullptr, &command_pool), "vkCreateCommandPool");
   const VkCommandBufferAllocateInfo alloc{.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO,
                                           .commandPool = command_pool,
                                           .level = VK_COMMAND_BUFFER_LEVEL_PRIMARY,
                                           .commandBufferCount = 1};
-  check(vkAllocateCommandBuffers(device.handle, &alloc, &transfer_commands), "vkAllocateCommandBuffers");
+  check(vkAllocateCommandBuffers(d.handle, &alloc, &transfer_commands), "vkAllocateCommandBuffers");
   const VkFenceCreateInfo fence_info{.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-  check(vkCreateFence(device.handle, &fence_info, nullptr, &fence), "vkCreateFence");
+  check(vkCreateFence(d.handle, &fence_info, nullptr, &fence), "vkCreateFence");
 }
 
+// Every submission of this context has been waited for: nothing of it is still running.
 Context::State::~State() {
-  if (device.handle == VK_NULL_HANDLE) return;
-  vkDeviceWaitIdle(device.handle);
   for (VkQueryPool pool : query_pools) vkDestroyQueryPool(device.handle, pool, nullptr);
   if (fence != VK_NULL_HANDLE) vkDestroyFence(device.handle, fence, nullptr);
   if (command_pool != VK_NULL_HANDLE) vkDestroyCommandPool(device.handle, command_pool, nullptr);
 }
 
 Buffer Context::State::make_buffer(VkDeviceSize bytes, bool host_visible) {
-  if (bytes > capabilities.max_buffer_size)
-    throw Error("a buffer of " + std::to_string(bytes) + " bytes exceeds the largest " + name + " allows (" +
-                std::to_string(capabilities.max_buffer_size) + " bytes)");
+  if (bytes > device.capabilities.max_buffer_size)
+    throw Error("a buffer of " + std::to_string(bytes) + " bytes exceeds the largest " + device.name +
+                " allows (" + std::to_string(device.capabilities.max_buffer_size) + " bytes)");
   Buffer b;
   b.device_ = device.handle;
   b.size_ = bytes;
@@ -169,10 +85,10 @@ Buffer Context::State::make_buffer(VkDeviceSize bytes, bool host_visible) {
   vkGetBufferMemoryRequirements(device.handle, b.buffer_, &requirements);
   // Host-visible buffers are mostly read back by the host: cached memory makes that fast.
   const std::uint32_t type =
-      host_visible ? memory_type(memory, requirements.memoryTypeBits,
+      host_visible ? memory_type(device.memory, requirements.memoryTypeBits,
                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
                                  VK_MEMORY_PROPERTY_HOST_CACHED_BIT)
-                   : memory_type(memory, requirements.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+                   : memory_type(device.memory, requirements.memoryTypeBits, 0, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   const VkMemoryAllocateFlagsInfo flags{.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO,
                                         .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT};
   const VkMemoryAllocateInfo alloc{.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
@@ -200,22 +116,20 @@ const Buffer& Context::State::staging_buffer(VkDeviceSize bytes) {
 
 std::unique_ptr<Context> Context::create(const ContextOptions& options) {
   std::unique_ptr<Context> context(new Context);
-  context->state_ = std::make_unique<State>(options.validation || kDebugBuild ||
-                                            environment("LIGHTSAMPLER_VULKAN_VALIDATION") == "1");
-  State& s = *context->state_;
-  const auto devices = survey_devices(s.instance);
+  Runtime& runtime = Runtime::get(options.validation);
   const std::string request =
       options.device.empty() ? environment("LIGHTSAMPLER_VULKAN_DEVICE") : options.device;
-  s.create_device(select_device(devices, request));
+  context->state_ = std::make_unique<State>(runtime.device(select_device(runtime.devices(), request)));
   return context;
 }
 
 Context::~Context() = default;
 
-const std::string& Context::device_name() const { return state_->name; }
-const Capabilities& Context::capabilities() const { return state_->capabilities; }
-bool Context::validation_enabled() const { return state_->instance.validation(); }
-std::vector<std::string> Context::validation_messages() const { return state_->log.snapshot(); }
+const std::string& Context::device_name() const { return state_->device.name; }
+const Capabilities& Context::capabilities() const { return state_->device.capabilities; }
+// A Context exists, so the runtime does: get() returns it.
+bool Context::validation_enabled() const { return Runtime::get(false).instance().validation(); }
+std::vector<std::string> Context::validation_messages() const { return Runtime::get(false).log().snapshot(); }
 
 Buffer Context::create_buffer(VkDeviceSize bytes, bool host_visible) {
   return state_->make_buffer(bytes, host_visible);

@@ -1,6 +1,7 @@
 #pragma once
-// The Vulkan runtime the GPU backend stands on: one instance and device, RAII resources, compute
-// and raster pipelines built from embedded SPIR-V, command recording with GPU timestamps.
+// The Vulkan runtime the GPU backend stands on: the process's one instance and one device per GPU,
+// RAII resources, compute and raster pipelines built from embedded SPIR-V, command recording with
+// GPU timestamps.
 // Every buffer is reached from shaders by its device address (no descriptor sets).
 
 #include <vulkan/vulkan.h>
@@ -38,8 +39,9 @@ struct ContextOptions {
   /// LIGHTSAMPLER_VULKAN_DEVICE, else the best suitable device (discrete > integrated > virtual
   /// > cpu).
   std::string device;
-  /// Khronos validation layer: on when requested here or by LIGHTSAMPLER_VULKAN_VALIDATION=1,
-  /// if installed. Validation messages of severity warning or error are collected (see
+  /// Khronos validation layer: on when requested by the process's first Context (or sampler),
+  /// by LIGHTSAMPLER_VULKAN_VALIDATION=1 or in a Debug build, if installed. The instance is made
+  /// once, so a later request cannot turn it on (it says so on stderr). Validation messages of severity warning or error are collected (see
   /// Context::validation_messages) and also printed to stderr.
   bool validation = false;
 };
@@ -47,10 +49,13 @@ struct ContextOptions {
 /// The device's capabilities the sampler adapts to.
 struct Capabilities {
   std::uint32_t subgroup_size;
-  bool conservative_rasterization;  ///< VK_EXT_conservative_rasterization enabled
+  /// VK_EXT_conservative_rasterization enabled (only where degenerate triangles rasterize too)
+  bool conservative_rasterization;
   float timestamp_period_ns;
   std::uint32_t max_workgroup_count_x;
   VkDeviceSize max_buffer_size;     ///< largest single buffer we may create
+  VkDeviceSize device_local_bytes;  ///< size of the largest device-local memory heap
+  std::uint32_t sub_pixel_bits;     ///< precision of rasterized vertex positions
   bool raster;                      ///< create_raster works (graphics queue, dynamic rendering,
                                     ///< fragmentStoresAndAtomics)
   bool geometry_shader;             ///< raster pipelines may have a geometry stage
@@ -157,11 +162,15 @@ class Commands {
   Context* context_ = nullptr;
 };
 
-/// One thread at a time (validation_messages() excepted). Buffers, pipelines and Commands must be
-/// destroyed before their Context.
-/// Validation warnings and errors reported so far by every context of the process (tests of
-/// objects that own their context assert that it does not grow).
+/// Validation warnings and errors reported so far in the process (tests assert that it does not
+/// grow).
 std::size_t validation_message_count();
+
+/// A user of the device: its command objects, timestamps and staging memory. Contexts share the
+/// process's VkInstance and the VkDevice of their physical device, both created on first use and
+/// kept until the process exits; destroying a Context frees only what it made. One thread at a
+/// time per Context (validation_messages() excepted); several Contexts may be used from several
+/// threads. Buffers, pipelines and Commands must be destroyed before their Context.
 
 class Context {
  public:
@@ -176,7 +185,7 @@ class Context {
   const std::string& device_name() const;
   const Capabilities& capabilities() const;
   bool validation_enabled() const;
-  /// Validation warnings and errors reported so far (tests assert this stays empty).
+  /// Validation warnings and errors reported so far in the process.
   std::vector<std::string> validation_messages() const;
 
   /// Throws Error when the device cannot hold it (larger than max_buffer_size, out of memory).

@@ -96,7 +96,7 @@ DeviceSurvey survey(VkPhysicalDevice handle, std::uint32_t index, std::uint32_t 
   const auto extensions = device_extensions(handle);
   const bool atomic_float = has(extensions, VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
   d.dynamic_rendering_extension = !core13 && has(extensions, VK_KHR_DYNAMIC_RENDERING_EXTENSION_NAME);
-  d.conservative_rasterization = has(extensions, VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
+  const bool conservative = has(extensions, VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
 
   // Properties: subgroups, and the largest allocation (1.1) and buffer (1.3) the device allows.
   VkPhysicalDeviceMaintenance4Properties maintenance4{
@@ -104,12 +104,18 @@ DeviceSurvey survey(VkPhysicalDevice handle, std::uint32_t index, std::uint32_t 
   VkPhysicalDeviceMaintenance3Properties maintenance3{
       .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES,
       .pNext = core13 ? &maintenance4 : nullptr};
+  VkPhysicalDeviceConservativeRasterizationPropertiesEXT conservative_properties{
+      .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CONSERVATIVE_RASTERIZATION_PROPERTIES_EXT,
+      .pNext = &maintenance3};
   VkPhysicalDeviceSubgroupProperties subgroup{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
-                                              .pNext = &maintenance3};
+                                              .pNext = conservative ? static_cast<void*>(&conservative_properties)
+                                                                    : static_cast<void*>(&maintenance3)};
   VkPhysicalDeviceProperties2 properties2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
                                           .pNext = &subgroup};
   vkGetPhysicalDeviceProperties2(handle, &properties2);
   d.subgroup_size = subgroup.subgroupSize;
+  // Counting needs every touched texel, so also those of triangles that snap to zero area.
+  d.conservative_rasterization = conservative && conservative_properties.degenerateTrianglesRasterized;
   d.max_buffer_size = maintenance3.maxMemoryAllocationSize;
   if (core13) d.max_buffer_size = std::min(d.max_buffer_size, maintenance4.maxBufferSize);
 
@@ -220,9 +226,8 @@ const DeviceSurvey& select_device(const std::vector<DeviceSurvey>& devices, cons
 
 std::vector<DeviceInfo> Context::devices() {
   try {
-    const Instance instance(false, nullptr);
     std::vector<DeviceInfo> out;
-    for (const auto& d : survey_devices(instance)) out.push_back(d.info);
+    for (const auto& d : Runtime::get(false).devices()) out.push_back(d.info);
     return out;
   } catch (const Unavailable&) {
     return {};

@@ -66,7 +66,7 @@ void destroy(VkDevice device, VkPipeline pipeline, VkPipelineLayout layout) {
 
 ComputePipeline Context::create_compute(std::span<const std::uint32_t> spirv, std::uint32_t push_size) {
   State& s = *state_;
-  check_push_size(push_size, s.max_push_size);
+  check_push_size(push_size, s.device.max_push_size);
   const ShaderModule module(s.device.handle, spirv);
   ComputePipeline p;
   p.device_ = s.device.handle;
@@ -81,12 +81,13 @@ ComputePipeline Context::create_compute(std::span<const std::uint32_t> spirv, st
 
 RasterPipeline Context::create_raster(const RasterStages& stages, std::uint32_t push_size) {
   State& s = *state_;
-  if (!s.raster_missing.empty()) throw Unavailable(s.name + " cannot rasterize: it lacks " + s.raster_missing);
-  if (!stages.geometry.empty() && !s.capabilities.geometry_shader)
-    throw Unavailable(s.name + " lacks geometryShader");
-  if (stages.conservative && !s.capabilities.conservative_rasterization)
-    throw Unavailable(s.name + " lacks VK_EXT_conservative_rasterization");
-  check_push_size(push_size, s.max_push_size);
+  const Device& d = s.device;
+  if (!d.raster_missing.empty()) throw Unavailable(d.name + " cannot rasterize: it lacks " + d.raster_missing);
+  if (!stages.geometry.empty() && !d.capabilities.geometry_shader)
+    throw Unavailable(d.name + " lacks geometryShader");
+  if (stages.conservative && !d.capabilities.conservative_rasterization)
+    throw Unavailable(d.name + " lacks VK_EXT_conservative_rasterization");
+  check_push_size(push_size, s.device.max_push_size);
 
   const ShaderModule vertex(s.device.handle, stages.vertex);
   std::vector<VkPipelineShaderStageCreateInfo> stage_infos{stage_info(VK_SHADER_STAGE_VERTEX_BIT, vertex)};

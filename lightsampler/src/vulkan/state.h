@@ -3,6 +3,7 @@
 // physical device offers, and the Context's state.
 
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -71,34 +72,68 @@ std::vector<DeviceSurvey> survey_devices(const Instance& instance);
 /// suitable one when it is empty. Throws Unavailable saying what is missing or what exists.
 const DeviceSurvey& select_device(const std::vector<DeviceSurvey>& devices, const std::string& request);
 
-/// Owns the VkDevice; destroyed after every object made from it (see State's member order).
-struct DeviceHandle {
+/// The logical device of one physical device, shared by every Context of the process: created
+/// on first use and kept until exit, like the instance. Immutable once made, but for the queue,
+/// which `submit` serializes (vkQueueSubmit needs the queue externally synchronized).
+struct Device {
+  explicit Device(const DeviceSurvey& d);
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
   VkDevice handle = VK_NULL_HANDLE;
-  DeviceHandle() = default;
-  DeviceHandle(const DeviceHandle&) = delete;
-  DeviceHandle& operator=(const DeviceHandle&) = delete;
-  ~DeviceHandle();
-};
-
-struct Context::State {
-  explicit State(bool validation) : instance(validation, &log) {}
-  ~State();
-
-  // Members are destroyed bottom-up: the staging buffer, then (in ~State) pools and the fence,
-  // then the device, then the instance and its messenger, then the log it writes to.
-  MessageLog log;
-  Instance instance;
-  DeviceHandle device;
   VkPhysicalDevice physical = VK_NULL_HANDLE;
   std::string name;
   Capabilities capabilities{};
   std::string raster_missing;
   std::uint32_t max_push_size = 0;
+  std::uint32_t queue_family = 0;
   VkPhysicalDeviceMemoryProperties memory{};
-  VkQueue queue = VK_NULL_HANDLE;
   std::uint64_t timestamp_mask = 0;  ///< 0: the queue writes no timestamps
   PFN_vkCmdBeginRendering begin_rendering = nullptr;
   PFN_vkCmdEndRendering end_rendering = nullptr;
+
+  /// Submits `cmd` (ended), signalling `fence` when done.
+  void submit(VkCommandBuffer cmd, VkFence fence);
+
+ private:
+  VkQueue queue_ = VK_NULL_HANDLE;
+  std::mutex queue_mutex_;
+};
+
+/// The process's Vulkan: one instance and one logical device per physical device, made on first
+/// use and never destroyed. A driver need not survive being loaded again (NVIDIA's fails after
+/// about 14 instances in one process), and objects of a long-lived program may outlive any scope
+/// that could own them. Thread-safe.
+class Runtime {
+ public:
+  /// The runtime, created by the first call with validation if that call or
+  /// LIGHTSAMPLER_VULKAN_VALIDATION=1 or a Debug build asks for it; later requests cannot turn
+  /// it on. Throws Unavailable (every call, without retrying) when there is no usable loader
+  /// or driver.
+  static Runtime& get(bool validation);
+
+  const Instance& instance() const { return instance_; }
+  const std::vector<DeviceSurvey>& devices() const { return devices_; }
+  /// The device for `survey` (one of devices()), created on first use.
+  Device& device(const DeviceSurvey& survey);
+  MessageLog& log() { return log_; }
+
+ private:
+  explicit Runtime(bool validation);
+  MessageLog log_;
+  Instance instance_;
+  std::vector<DeviceSurvey> devices_;
+  std::mutex devices_mutex_;
+  std::vector<std::unique_ptr<Device>> created_;  ///< by physical device index
+};
+
+/// What one Context owns on the shared device: its command pool and buffers, fence, timestamp
+/// queries and staging memory. Destroying it frees them and nothing else.
+struct Context::State {
+  explicit State(Device& d);
+  ~State();
+
+  Device& device;
   VkCommandPool command_pool = VK_NULL_HANDLE;
   VkCommandBuffer transfer_commands = VK_NULL_HANDLE;
   VkFence fence = VK_NULL_HANDLE;
@@ -107,7 +142,6 @@ struct Context::State {
 
   static constexpr std::uint32_t kQueriesPerPool = 64;
 
-  void create_device(const DeviceSurvey& d);
   Buffer make_buffer(VkDeviceSize bytes, bool host_visible);
   /// The host-visible staging buffer, grown to at least `bytes`.
   const Buffer& staging_buffer(VkDeviceSize bytes);

@@ -42,6 +42,7 @@ std::uint32_t device_max_tries(const std::string& device, std::uint32_t requeste
 /// Per-triangle and per-frame device buffers, grown on demand and kept between frames.
 struct FrameBuffers {
   Buffer expected, max_density, footprint, cell_cdf, counts, cdf, inverse, identity, totals, samples;
+  Buffer totals_readback;  ///< host-visible copy of `totals`: shader atomics stay in device memory
 };
 
 class VulkanSampler final : public Sampler {
@@ -63,7 +64,8 @@ class VulkanSampler final : public Sampler {
     buffers_.identity = context_->create_buffer(t * sizeof(std::uint32_t));
     if (!identity.empty())
       context_->upload(buffers_.identity, 0, identity.data(), identity.size() * sizeof(std::uint32_t));
-    buffers_.totals = context_->create_buffer(sizeof(gpu::GpuTotals), /*host_visible=*/true);
+    buffers_.totals = context_->create_buffer(sizeof(gpu::GpuTotals));
+    buffers_.totals_readback = context_->create_buffer(sizeof(gpu::GpuTotals), /*host_visible=*/true);
   }
 
   std::string backend() const override { return "vulkan"; }
@@ -98,9 +100,12 @@ class VulkanSampler final : public Sampler {
   }
 
  private:
-  gpu::GpuTotals totals() const {
+  /// Runs `c`, whose passes end with a barrier, and returns the frame's totals after it.
+  gpu::GpuTotals submit(Commands& c, Frame& frame) {
+    c.copy(buffers_.totals, 0, buffers_.totals_readback, 0, sizeof(gpu::GpuTotals));
+    add_passes(frame, context_->submit(c));
     gpu::GpuTotals t;
-    std::memcpy(&t, buffers_.totals.mapped(), sizeof t);
+    std::memcpy(&t, buffers_.totals_readback.mapped(), sizeof t);
     return t;
   }
 
@@ -145,6 +150,9 @@ class VulkanSampler final : public Sampler {
   void record_raster_counting(Commands& c) {
     const vk::RasterPipeline& pipeline = raster_pipeline();
     const std::uint32_t vertices = 3 * scene_.triangle_count();
+    // The geometry shader's margin: vertices snap to 2^-bits of a pixel, and texel coordinates
+    // pass through NDC in float (about 1e-3 of a texel in a 4096-texel tile).
+    const float dilation = std::ldexp(1.0f, -int(context_->capabilities().sub_pixel_bits)) + 0x1p-9f;
     for (std::uint32_t m = 0; m < scene_.map_boxes().size(); ++m) {
       const vk::LatticeBox box = scene_.map_boxes()[m];
       if (box.empty()) continue;
@@ -155,7 +163,7 @@ class VulkanSampler final : public Sampler {
           const gpu::RasterPush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
                                      buffers_.expected.address(), buffers_.max_density.address(),
                                      buffers_.footprint.address(), float(x), float(y), float(width),
-                                     float(height), m, 0};
+                                     float(height), m, dilation};
           c.draw(pipeline, &push, sizeof push, width, height, vertices);
         }
     }
@@ -210,9 +218,7 @@ class VulkanSampler final : public Sampler {
     c.dispatch(pipelines_.round, &round, sizeof round, workgroups_for(n_tri));
     c.barrier();
     c.timestamp("rounding");
-    add_passes(frame, context_->submit(c));
-
-    const gpu::GpuTotals counted = totals();
+    const gpu::GpuTotals counted = submit(c, frame);
     frame.expected_total = counted.expected_total;
     validate_expected_total(frame.expected_total);
     frame.sample_count = counted.sample_count;
@@ -260,9 +266,7 @@ class VulkanSampler final : public Sampler {
     }
     c.barrier();
     c.timestamp("distribution");
-    add_passes(frame, context_->submit(c));
-
-    const gpu::GpuTotals bounded = totals();
+    const gpu::GpuTotals bounded = submit(c, frame);
     double target;
     if (request.target_count) {
       target = *request.target_count;
@@ -297,8 +301,7 @@ class VulkanSampler final : public Sampler {
 
   /// Runs the last submission, then reads its totals and the outputs the request asks for.
   void finish(Commands& d, const FrameRequest& request, Frame& frame, Outputs outputs) {
-    add_passes(frame, context_->submit(d));
-    const gpu::GpuTotals realized = totals();
+    const gpu::GpuTotals realized = submit(d, frame);
     frame.candidates = realized.candidates;
     frame.exhausted = realized.exhausted;
     if (request.read_back) read_back(frame, outputs, request.realize);
