@@ -13,6 +13,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -136,6 +137,34 @@ TEST_F(VulkanTest, OneInstanceAndOneDeviceServeEveryContextAndSampler) {
     for (Sampler* s : {a.get(), b.get(), c.get()}) expect_working(*s, 1000, 1);
   }
   expect_one_instance_and_one_device();
+}
+
+TEST(VulkanProcess, FirstUseFromSeveralThreadsMakesOneInstance) {
+  // Eight threads make their samplers at once, the process's first Vulkan use when this test runs
+  // in a process of its own (as under ctest), then draw frames side by side on the one queue.
+  const std::size_t reported_before = vk::validation_message_count();
+  const Mesh mesh = trs_test::random_triangles(100, 0.0f, 1.0f, 4);
+  const Map map = trs_test::random_map(16, 16, 0.3, 5);
+  const DensityMapView view = map.view();
+  std::vector<std::string> unavailable(8);
+  std::vector<std::thread> threads;
+  for (std::size_t t = 0; t < unavailable.size(); ++t)
+    threads.emplace_back([&, t] {
+      try {
+        auto sampler = make_vulkan_sampler(mesh.view(), {&view, 1});
+        for (std::uint64_t frame = 0; frame < 5; ++frame) expect_working(*sampler, 5000, t * 5 + frame);
+      } catch (const VulkanUnavailable& e) {
+        unavailable[t] = e.what();
+      }
+    });
+  for (std::thread& thread : threads) thread.join();
+  if (!unavailable[0].empty()) {
+    if (trs_test::vulkan_required()) FAIL() << "Vulkan is required here: " << unavailable[0];
+    GTEST_SKIP() << "no Vulkan device: " << unavailable[0];
+  }
+  for (const std::string& u : unavailable) EXPECT_TRUE(u.empty()) << u;
+  expect_one_instance_and_one_device();
+  EXPECT_EQ(vk::validation_message_count(), reported_before) << "the validation layer reported problems";
 }
 
 TEST_F(VulkanTest, TwoHundredSamplersComeAndGo) {

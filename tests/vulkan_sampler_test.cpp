@@ -208,7 +208,8 @@ TEST_F(VulkanSampler, WrapAndClampAgreeExactlyWithTheCpuFarBeyondTheUnitSquare) 
   // Texel addresses of cells down to -40 on maps 7 and 5 texels wide: every counting path reads
   // exactly the CPU's texels (D_T^max equal, N-bar_T equal up to float summation order), and
   // realization draws the CPU's samples, bit for bit, wherever both gave a triangle the same
-  // N_T. GLSL leaves % of a negative operand undefined; lavapipe happens to give C's remainder
+  // N_T; plain rejection sampling draws the CPU's samples in the CPU's order. GLSL leaves % of
+  // a negative operand undefined; lavapipe happens to give C's remainder
   // where other drivers do not, so this test bites on GPUs.
   const Mesh mesh = scattered_triangles(400, 21);
   for (Addressing addressing : {Addressing::wrap, Addressing::clamp}) {
@@ -240,7 +241,29 @@ TEST_F(VulkanSampler, WrapAndClampAgreeExactlyWithTheCpuFarBeyondTheUnitSquare) 
       }
       EXPECT_GT(compared, want.size() * 95 / 100) << "N_T agree for most triangles";
     }
+    // Plain rejection sampling reads the same texels through the same stream: the same samples.
+    const FrameRequest rs{.seed = 9, .target_count = 2e4, .method = Method::rejection};
+    const Frame want = generate(*cpu(mesh, maps), rs), got = generate(*sampler, rs);
+    ASSERT_EQ(got.samples.size(), want.samples.size());
+    for (std::size_t i = 0; i < want.samples.size(); ++i) {
+      const Sample &a = want.samples[i], &b = got.samples[i];
+      ASSERT_TRUE(a.triangle == b.triangle && a.b1 == b.b1 && a.b2 == b.b2) << "rejection sample " << i;
+    }
   }
+}
+
+TEST_F(VulkanSampler, RasterCountingRefusesTexelsBeyondFloatPrecision) {
+  // UVs near 2.5e6 on an 8-texel map: texel 2e7, past 2^24, where the rasterizer's float
+  // positions lose whole texels. Raster counting says so; compute counting is exact there.
+  const float u = 2.5e6f;
+  const Mesh mesh = trs_test::quad(1, 1, u, 0.0f, u + 0.5f, 0.5f);
+  const std::vector<Map> maps = {distinct_map(8, 8, Addressing::wrap)};
+  auto sampler = gpu(mesh, maps);
+  EXPECT_THROW(generate(*sampler, {.counting = Counting::raster, .realize = false}), std::invalid_argument);
+  const Frame reference = generate(*cpu(mesh, maps), {.realize = false});
+  const Frame f = generate(*sampler, {.counting = Counting::compute, .realize = false});
+  ASSERT_EQ(f.max_density.size(), reference.max_density.size());
+  for (std::size_t t = 0; t < f.max_density.size(); ++t) EXPECT_EQ(f.max_density[t], reference.max_density[t]);
 }
 
 TEST_F(VulkanSampler, UnorderedScanIsAPermutation) {

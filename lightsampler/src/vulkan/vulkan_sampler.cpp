@@ -1,12 +1,14 @@
 // The Vulkan backend: the passes of shaders/ recorded in two submissions per frame. The host
 // reads N between them, to size the sample buffer and to choose the scan.
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 #include <string>
 
 #include "cpu/passes.h"
@@ -148,6 +150,15 @@ class VulkanSampler final : public Sampler {
   /// The paper's counting: every map's triangles rasterized in its texel space, one draw per
   /// viewport-sized tile of the lattice cells they touch.
   void record_raster_counting(Commands& c) {
+    // Tile corners and vertices reach the rasterizer as floats, exact only within 2^24 texels.
+    constexpr std::int64_t kExactFloat = std::int64_t(1) << 24;
+    for (const vk::LatticeBox& box : scene_.map_boxes())
+      if (!box.empty() && std::max({-box.x0, -box.y0, box.x1 + 1, box.y1 + 1}) > kExactFloat)
+        throw std::invalid_argument("raster counting: the mesh reaches texel " + std::to_string(box.x0) + ", " +
+                                    std::to_string(box.y0) + " to " + std::to_string(box.x1) + ", " +
+                                    std::to_string(box.y1) +
+                                    ", beyond the 2^24 texels a float rasterizer addresses exactly; use "
+                                    "compute counting");
     const vk::RasterPipeline& pipeline = raster_pipeline();
     const std::uint32_t vertices = 3 * scene_.triangle_count();
     // The geometry shader's margin: vertices snap to 2^-bits of a pixel, and texel coordinates
