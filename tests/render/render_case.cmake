@@ -9,9 +9,14 @@ file(MAKE_DIRECTORY ${WORK})
 execute_process(
   COMMAND ${RENDER} ${SCENE} --out ${WORK}/image.exr --variance ${WORK}/variance.exr
           --strategy ${STRATEGY} --spp ${SPP} --seed 7 ${TRS_REFERENCE_SETTINGS} ${EXTRA} --quiet
-  RESULT_VARIABLE status)
+  RESULT_VARIABLE status ERROR_VARIABLE errors)
+message("${errors}")
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "trs-render failed (${status})")
+endif()
+# With LIGHTSAMPLER_VULKAN_VALIDATION=1 the Vulkan light sampler must run silent.
+if(errors MATCHES "lightsampler: Vulkan (error|warning)")
+  message(FATAL_ERROR "the Vulkan validation layer reported problems")
 endif()
 execute_process(
   COMMAND ${IMGDIFF} ${WORK}/image.exr ${REFERENCE}.exr --variance ${WORK}/variance.exr

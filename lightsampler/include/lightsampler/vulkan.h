@@ -17,12 +17,16 @@ struct VulkanOptions {
   /// else the best device (discrete GPU first).
   std::string device;
   /// Khronos validation layer, when installed; also on with LIGHTSAMPLER_VULKAN_VALIDATION=1 and
-  /// in Debug builds of the library.
+  /// in Debug builds of the library. It is set when the process's one Vulkan instance is made,
+  /// by the first sampler: a later request cannot turn it on.
   bool validation = false;
 };
 
-/// The GPU backend. Throws VulkanUnavailable when no suitable device exists (the message says
-/// what is missing), std::invalid_argument / std::length_error on bad input as the CPU backend.
+/// The GPU backend. Samplers share the process's Vulkan instance and, per GPU, its device: both
+/// are made on first use and kept until the process exits; a sampler owns only its buffers,
+/// pipelines and command objects. Throws VulkanUnavailable when no suitable device exists (the
+/// message says what is missing), std::invalid_argument / std::length_error on bad input as the
+/// CPU backend.
 std::unique_ptr<Sampler> make_vulkan_sampler(const MeshView& mesh, std::span<const DensityMapView> maps,
                                              const VulkanOptions& options = {});
 
