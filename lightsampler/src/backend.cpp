@@ -1,14 +1,20 @@
-// Choosing a backend: Vulkan when a suitable device exists, the CPU otherwise.
+// Choosing a backend: Vulkan on a GPU where the library has it, the CPU otherwise.
 
 #include <cstdlib>
 #include <string>
 
+#include "lightsampler/backend.h"
+
+#ifdef LIGHTSAMPLER_HAS_VULKAN
 #include "lightsampler/vulkan.h"
 #include "vulkan/context.h"
+#endif
 
 namespace lightsampler {
 
 namespace {
+
+#ifdef LIGHTSAMPLER_HAS_VULKAN
 
 bool has_suitable_gpu() {
   for (const vk::DeviceInfo& d : vk::Context::devices())
@@ -37,15 +43,37 @@ std::unique_ptr<Sampler> make_backend(const MeshView& mesh, std::span<const Dens
   return nullptr;
 }
 
+#else
+
+std::unique_ptr<Sampler> make_backend(const MeshView& mesh, std::span<const DensityMapView> maps,
+                                      const SamplerOptions& options) {
+  if (options.backend == Backend::vulkan)
+    throw VulkanUnavailable("this build of lightsampler has no Vulkan backend (configured with "
+                            "LIGHTSAMPLER_VULKAN=OFF)");
+  return make_cpu_sampler(mesh, maps, options.cpu);
+}
+
+#endif
+
 }  // namespace
+
+bool has_vulkan_backend() {
+#ifdef LIGHTSAMPLER_HAS_VULKAN
+  return true;
+#else
+  return false;
+#endif
+}
 
 std::vector<std::string> vulkan_devices() {
   std::vector<std::string> lines;
+#ifdef LIGHTSAMPLER_HAS_VULKAN
   for (const vk::DeviceInfo& d : vk::Context::devices()) {
     std::string line = std::to_string(d.index) + ": " + d.name;
     if (!d.suitable) line += " (unsuitable: " + d.missing + ")";
     lines.push_back(line);
   }
+#endif
   return lines;
 }
 

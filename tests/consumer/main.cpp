@@ -10,7 +10,9 @@ int main() {
   const std::vector<std::uint32_t> indices = {0, 1, 2, 0, 2, 3};
   const std::vector<float> texels = {1.0f, 3.0f};
   const lightsampler::DensityMapView map{texels, 2, 1};
-  auto sampler = lightsampler::make_cpu_sampler({positions, uvs, indices, {}}, {&map, 1});
+  // The backend-neutral factory, present whatever backends the library was built with.
+  auto sampler = lightsampler::make_sampler({positions, uvs, indices, {}}, {&map, 1},
+                                            {.backend = lightsampler::Backend::cpu});
   lightsampler::Frame frame;
   sampler->generate({.seed = 1, .target_count = 1000}, frame);
   std::printf("%llu samples, N-bar %.3f, on %s\n", static_cast<unsigned long long>(frame.sample_count),

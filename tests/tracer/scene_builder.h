@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include <lightsampler/vulkan.h>
+#include <lightsampler/backend.h>
 
 #include "tracer/scene.h"
 

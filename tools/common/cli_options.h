@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "lightsampler/vulkan.h"
+#include "lightsampler/backend.h"
 
 namespace trs {
 

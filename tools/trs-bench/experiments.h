@@ -8,7 +8,7 @@
 
 #include "density_maps.h"
 #include "lightsampler/sampler.h"
-#include "lightsampler/vulkan.h"
+#include "lightsampler/backend.h"
 #include "measure.h"
 #include "meshes.h"
 #include "report.h"

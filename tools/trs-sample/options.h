@@ -10,7 +10,7 @@
 #include "common/density_io.h"
 #include "lightsampler/mesh.h"
 #include "lightsampler/sampler.h"
-#include "lightsampler/vulkan.h"
+#include "lightsampler/backend.h"
 
 namespace trs {
 

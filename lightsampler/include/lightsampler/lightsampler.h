@@ -1,6 +1,7 @@
 #pragma once
 // Umbrella header of the lightsampler library.
 
+#include "lightsampler/backend.h"
 #include "lightsampler/buffer.h"
 #include "lightsampler/mesh.h"
 #include "lightsampler/overlap.h"
@@ -9,4 +10,6 @@
 #include "lightsampler/sample.h"
 #include "lightsampler/sampler.h"
 #include "lightsampler/triangle_map.h"
+#ifdef LIGHTSAMPLER_HAS_VULKAN
 #include "lightsampler/vulkan.h"
+#endif

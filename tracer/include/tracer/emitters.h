@@ -14,7 +14,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
-#include <lightsampler/vulkan.h>
+#include <lightsampler/backend.h>
 
 #include "tracer/scene.h"
 
