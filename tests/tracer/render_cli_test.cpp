@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "support/gltf_quad.h"
-#include "common/image_output.h"
+#include "scene_io/image_output.h"
 #include "support/subprocess.h"
 
 namespace {

@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "common/color.h"
-#include "common/file_error.h"
-#include "common/image_output.h"
+#include "scene_io/color.h"
+#include "scene_io/file_error.h"
+#include "scene_io/image_output.h"
 #include "tracer/gltf_scene.h"
 
 namespace {

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <ostream>
 
-#include "common/atomic_file.h"
+#include "scene_io/atomic_file.h"
 
 namespace trs_bench {
 

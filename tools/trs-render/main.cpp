@@ -12,9 +12,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "common/atomic_file.h"
-#include "common/file_error.h"
-#include "common/image_output.h"
+#include "scene_io/atomic_file.h"
+#include "scene_io/file_error.h"
+#include "scene_io/image_output.h"
 #include "options.h"
 #include "report.h"
 #include "tracer/gltf_scene.h"

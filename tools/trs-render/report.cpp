@@ -1,4 +1,4 @@
-#include "common/color.h"
+#include "scene_io/color.h"
 #include "report.h"
 
 #include <unistd.h>

@@ -13,11 +13,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "common/atomic_file.h"
-#include "common/density_io.h"
-#include "common/file_error.h"
-#include "common/mesh_io.h"
-#include "common/ply.h"
+#include "scene_io/atomic_file.h"
+#include "scene_io/density_io.h"
+#include "scene_io/file_error.h"
+#include "scene_io/mesh_io.h"
+#include "scene_io/ply.h"
 #include "lightsampler/sampler.h"
 #include "options.h"
 #include "report.h"

@@ -7,7 +7,7 @@
 #include <string>
 #include <variant>
 
-#include "common/density_io.h"
+#include "scene_io/density_io.h"
 #include "lightsampler/mesh.h"
 #include "lightsampler/sampler.h"
 #include "lightsampler/backend.h"

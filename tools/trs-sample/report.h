@@ -5,8 +5,8 @@
 #include <optional>
 #include <ostream>
 
-#include "common/density_io.h"
-#include "common/mesh_io.h"
+#include "scene_io/density_io.h"
+#include "scene_io/mesh_io.h"
 #include "lightsampler/sampler.h"
 #include "options.h"
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <utility>
 
-#include "common/color.h"
-#include "common/file_error.h"
-#include "common/image_output.h"
+#include "scene_io/color.h"
+#include "scene_io/file_error.h"
+#include "scene_io/image_output.h"
 
 namespace tracer {
 namespace {

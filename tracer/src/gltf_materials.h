@@ -1,7 +1,7 @@
 #pragma once
 // The materials of a glTF document and the textures they use (part of load_gltf_scene).
 
-#include "common/gltf_document.h"
+#include "scene_io/gltf_document.h"
 #include "tracer/scene.h"
 
 namespace tracer {

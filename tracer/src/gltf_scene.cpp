@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "common/gltf_document.h"
-#include "common/input_file.h"
+#include "scene_io/gltf_document.h"
+#include "scene_io/input_file.h"
 #include "gltf_materials.h"
 
 namespace tracer {

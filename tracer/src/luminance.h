@@ -1,9 +1,9 @@
 #pragma once
-// Luminance of a glm colour, by the project's one definition (common/color.h).
+// Luminance of a glm colour, by the project's one definition (scene_io/color.h).
 
 #include <glm/glm.hpp>
 
-#include "common/color.h"
+#include "scene_io/color.h"
 
 namespace tracer {
 

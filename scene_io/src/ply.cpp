@@ -1,4 +1,4 @@
-#include "common/ply.h"
+#include "scene_io/ply.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

@@ -2,8 +2,8 @@
 // node hierarchy, in world space, with its TEXCOORD_0. glTF's UV convention is the library's, so
 // UVs pass unchanged. Reading the file itself is gltf::Document's.
 
-#include "common/gltf_document.h"
-#include "common/mesh_loaders.h"
+#include "scene_io/gltf_document.h"
+#include "scene_io/mesh_loaders.h"
 
 namespace trs {
 

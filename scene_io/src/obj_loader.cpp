@@ -9,9 +9,9 @@
 #include <string>
 #include <unordered_map>
 
-#include "common/file_error.h"
-#include "common/mesh_loaders.h"
-#include "common/polygon_triangulation.h"
+#include "scene_io/file_error.h"
+#include "scene_io/mesh_loaders.h"
+#include "scene_io/polygon_triangulation.h"
 
 namespace trs {
 namespace {

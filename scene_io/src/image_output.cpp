@@ -1,4 +1,4 @@
-#include "common/image_output.h"
+#include "scene_io/image_output.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
@@ -7,10 +7,10 @@
 #include <cmath>
 #include <memory>
 
-#include "common/atomic_file.h"
-#include "common/color.h"
-#include "common/file_error.h"
-#include "common/input_file.h"
+#include "scene_io/atomic_file.h"
+#include "scene_io/color.h"
+#include "scene_io/file_error.h"
+#include "scene_io/input_file.h"
 
 namespace trs {
 namespace {

@@ -1,4 +1,4 @@
-#include "common/input_file.h"
+#include "scene_io/input_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <system_error>
 
-#include "common/file_error.h"
+#include "scene_io/file_error.h"
 
 namespace trs {
 

@@ -1,4 +1,4 @@
-#include "common/mesh_io.h"
+#include "scene_io/mesh_io.h"
 
 #include <algorithm>
 #include <cctype>
@@ -6,9 +6,9 @@
 #include <limits>
 #include <string>
 
-#include "common/file_error.h"
-#include "common/input_file.h"
-#include "common/mesh_loaders.h"
+#include "scene_io/file_error.h"
+#include "scene_io/input_file.h"
+#include "scene_io/mesh_loaders.h"
 
 namespace trs {
 namespace {

@@ -1,4 +1,4 @@
-#include "common/polygon_triangulation.h"
+#include "scene_io/polygon_triangulation.h"
 
 #include <cmath>
 #include <list>

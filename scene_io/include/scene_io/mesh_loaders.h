@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "common/mesh_io.h"
+#include "scene_io/mesh_io.h"
 
 namespace trs {
 

@@ -1,4 +1,4 @@
-#include "common/gltf_document.h"
+#include "scene_io/gltf_document.h"
 
 #include <cstring>
 #include <fstream>
@@ -8,7 +8,7 @@
 #include <limits>
 #include <utility>
 
-#include "common/file_error.h"
+#include "scene_io/file_error.h"
 
 namespace trs::gltf {
 namespace {

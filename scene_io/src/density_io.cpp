@@ -1,4 +1,4 @@
-#include "common/density_io.h"
+#include "scene_io/density_io.h"
 
 #include <OpenImageIO/imageio.h>
 #include <tbb/blocked_range.h>
@@ -12,9 +12,9 @@
 #include <string>
 #include <utility>
 
-#include "common/color.h"
-#include "common/file_error.h"
-#include "common/input_file.h"
+#include "scene_io/color.h"
+#include "scene_io/file_error.h"
+#include "scene_io/input_file.h"
 
 namespace trs {
 namespace {

@@ -1,4 +1,4 @@
-#include "common/color.h"
+#include "scene_io/color.h"
 
 #include <OpenColorIO/OpenColorIO.h>
 #include <tbb/blocked_range.h>

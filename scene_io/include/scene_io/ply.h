@@ -9,8 +9,8 @@
 #include <span>
 #include <string>
 
-#include "common/atomic_file.h"
-#include "common/mesh_io.h"
+#include "scene_io/atomic_file.h"
+#include "scene_io/mesh_io.h"
 #include "lightsampler/sample.h"
 
 namespace trs {

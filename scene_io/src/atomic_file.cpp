@@ -1,4 +1,4 @@
-#include "common/atomic_file.h"
+#include "scene_io/atomic_file.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -12,7 +12,7 @@
 #include <system_error>
 #include <vector>
 
-#include "common/file_error.h"
+#include "scene_io/file_error.h"
 
 namespace trs {
 namespace {
