@@ -43,19 +43,19 @@ std::vector<Cells> reference_cells(const Scenario& s) {
 }
 
 /// The texel a sample reads, computed as the sampler computes it (same float expression).
-std::pair<std::uint32_t, std::uint32_t> texel_of(const Scenario& s, const cpu::TexelTriangle& t,
+std::pair<std::uint32_t, std::uint32_t> texel_of(const Scenario& s, const core::TexelTriangle& t,
                                                  const Sample& sample) {
   const float x = t.origin[0] + sample.b1 * t.edge1[0] + sample.b2 * t.edge2[0];
   const float y = t.origin[1] + sample.b1 * t.edge1[1] + sample.b2 * t.edge2[1];
-  return {cpu::address(std::int64_t(std::floor(x)), s.map.width, s.map.addressing),
-          cpu::address(std::int64_t(std::floor(y)), s.map.height, s.map.addressing)};
+  return {core::address(std::int64_t(std::floor(x)), s.map.width, s.map.addressing),
+          core::address(std::int64_t(std::floor(y)), s.map.height, s.map.addressing)};
 }
 
-std::vector<cpu::TexelTriangle> texel_triangles(const Scenario& s) {
-  const cpu::DensityMap map{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
-  std::vector<cpu::TexelTriangle> out;
-  for (const cpu::TriangleRecord& r : cpu::make_triangle_records(s.mesh.view(), 1))
-    out.push_back(cpu::make_texel_triangle(r, {&map, 1}));
+std::vector<core::TexelTriangle> texel_triangles(const Scenario& s) {
+  const core::DensityMap map{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
+  std::vector<core::TexelTriangle> out;
+  for (const core::TriangleRecord& r : core::make_triangle_records(s.mesh.view(), 1))
+    out.push_back(core::make_texel_triangle(r, {&map, 1}));
   return out;
 }
 

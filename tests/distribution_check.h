@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-#include "cpu/geometry.h"
+#include "core/geometry.h"
 #include "lightsampler/sampler.h"
 #include "sampler_fixtures.h"
 #include "support/chi_square.h"
@@ -37,7 +37,7 @@ struct Scenario {
 std::vector<Scenario> scenarios();
 
 /// The scenario's triangles in texel space, as the samplers build them.
-std::vector<lightsampler::cpu::TexelTriangle> texel_triangles(const Scenario& s);
+std::vector<lightsampler::core::TexelTriangle> texel_triangles(const Scenario& s);
 
 ChiSquareResult test_per_triangle(const Scenario& s, std::span<const lightsampler::Sample> samples);
 ChiSquareResult test_all_cells(const Scenario& s, std::span<const lightsampler::Sample> samples);

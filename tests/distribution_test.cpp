@@ -33,7 +33,7 @@ Frame generate(const Scenario& s, Method method) {
 /// triangle: it crowds vertex 1).
 void realize_with_wrong_map(const Scenario& s, const Frame& counted, Buffer<Sample>& samples) {
   const auto tris = trs_test::texel_triangles(s);
-  const cpu::DensityMap map{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
+  const core::DensityMap map{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
   const PhiloxKey key = stream_key(s.seed, Stream::realization);
   samples.resize(counted.sample_count);
   std::uint64_t i = 0;
@@ -45,7 +45,7 @@ void realize_with_wrong_map(const Scenario& s, const Frame& counted, Buffer<Samp
         const float u0 = uniform_float(u[0]), u1 = uniform_float(u[1]);
         const Sample x{tri, u0, u1 * (1 - u0)};
         if (uniform_float(u[2]) * counted.max_density[tri] <
-            cpu::texel_triangle_density(tris[tri], {&map, 1}, x.b1, x.b2)) {
+            core::texel_triangle_density(tris[tri], {&map, 1}, x.b1, x.b2)) {
           samples[i] = x;
           break;
         }
@@ -78,7 +78,7 @@ TEST(Distribution, RejectsTrsThatIgnoresTheMaxDensity) {
   const Scenario s = trs_test::scenarios()[0];
   Frame frame = generate(s, Method::trs);
   const auto tris = trs_test::texel_triangles(s);
-  const cpu::DensityMap map{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
+  const core::DensityMap map{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
   const std::vector<float> no_bound(frame.max_density.size(), 0.0f);
   cpu::realize(tris, {&map, 1}, no_bound, frame.cdf.span(), frame.inverse_permutation.span(),
                stream_key(s.seed, Stream::realization), 1u << 20, frame.samples);
@@ -96,9 +96,9 @@ TEST(Distribution, RejectsRejectionSamplingWithTooLowABound) {
   // Half the true max: the brightest texels are accepted as often as dimmer ones.
   const Scenario s = trs_test::scenarios()[0];
   Frame frame = generate(s, Method::rejection);
-  const cpu::DensityMap map{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
+  const core::DensityMap map{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
   Buffer<double> area_cdf;
-  const auto records = cpu::make_triangle_records(s.mesh.view(), 1);
+  const auto records = core::make_triangle_records(s.mesh.view(), 1);
   const float bound = cpu::rejection_distribution(records, {&map, 1}, area_cdf);
   cpu::rejection_sample(texel_triangles(s), {&map, 1}, area_cdf.span(), 0.5f * bound, frame.sample_count,
                         stream_key(s.seed, Stream::rejection), 1u << 20, frame.samples);

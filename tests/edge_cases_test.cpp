@@ -11,7 +11,7 @@
 
 #include "lightsampler/sampler.h"
 #include "sampler_fixtures.h"
-#include "validate.h"
+#include "core/validate.h"
 
 using namespace lightsampler;
 using trs_test::Map;
@@ -191,8 +191,8 @@ TEST(EdgeCases, BadMeshesAreRejectedWithWhatAndWhere) {
 }
 
 TEST(EdgeCases, TwoToThe32TrianglesAreRefused) {
-  EXPECT_NO_THROW(validate_triangle_count(0xffffffffull));
-  EXPECT_THROW(validate_triangle_count(0x100000000ull), std::length_error);
+  EXPECT_NO_THROW(core::validate_triangle_count(0xffffffffull));
+  EXPECT_THROW(core::validate_triangle_count(0x100000000ull), std::length_error);
 }
 
 TEST(EdgeCases, BadTargetsAreRejected) {

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include "core/frame_policy.h"
 #include "cpu/passes.h"
 #include "lightsampler/sampler.h"
 #include "sampler_fixtures.h"
@@ -54,7 +55,7 @@ TEST(Scan, UnorderedIsAPermutationOfTheOrderedScan) {
       SCOPED_TRACE("n = " + std::to_string(n) + ", block = " + std::to_string(block));
       const auto counts = random_counts(n, n * 31 + block);
       const std::uint64_t total = std::accumulate(counts.begin(), counts.end(), std::uint64_t(0));
-      ASSERT_TRUE(cpu::unordered_scan_fits(n, total));
+      ASSERT_TRUE(core::unordered_scan_fits(n, total));
       Buffer<std::uint64_t> cdf;
       Buffer<std::uint32_t> inverse;
       arena.execute([&] { cpu::unordered_scan(counts, block, cdf, inverse); });
@@ -89,12 +90,12 @@ TEST(Scan, EmptyInput) {
 
 TEST(Scan, PackingLimits) {
   // n elements need bit_width(n) bits for the processing index; the sum gets the rest.
-  EXPECT_TRUE(cpu::unordered_scan_fits(1, (std::uint64_t(1) << 63) - 1));
-  EXPECT_FALSE(cpu::unordered_scan_fits(1, std::uint64_t(1) << 63));
-  EXPECT_TRUE(cpu::unordered_scan_fits(0xffffffffull, 0xffffffffull));  // the paper's 32/32 split
-  EXPECT_FALSE(cpu::unordered_scan_fits(0xffffffffull, 0x100000000ull));
-  EXPECT_TRUE(cpu::unordered_scan_fits(0x100000000ull, 0x7fffffffull));
-  EXPECT_FALSE(cpu::unordered_scan_fits(0x100000000ull, 0x80000000ull));
+  EXPECT_TRUE(core::unordered_scan_fits(1, (std::uint64_t(1) << 63) - 1));
+  EXPECT_FALSE(core::unordered_scan_fits(1, std::uint64_t(1) << 63));
+  EXPECT_TRUE(core::unordered_scan_fits(0xffffffffull, 0xffffffffull));  // the paper's 32/32 split
+  EXPECT_FALSE(core::unordered_scan_fits(0xffffffffull, 0x100000000ull));
+  EXPECT_TRUE(core::unordered_scan_fits(0x100000000ull, 0x7fffffffull));
+  EXPECT_FALSE(core::unordered_scan_fits(0x100000000ull, 0x80000000ull));
 }
 
 TEST(Scan, BeyondTwoToThe32SamplesTheCountsStayExact) {

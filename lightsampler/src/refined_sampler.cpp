@@ -7,7 +7,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "host_scene.h"
+#include "core/host_scene.h"
 #include "lightsampler/refinement.h"
 
 namespace lightsampler {
@@ -75,7 +75,7 @@ class RefinedSampler final : public Sampler {
   }
 
  private:
-  HostScene input_;
+  core::HostScene input_;
   RefinedMesh refined_;
   std::unique_ptr<Sampler> parts_;
 };

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cpu/passes.h"
-#include "host_scene.h"
-#include "validate.h"
+#include "core/counting.h"
+#include "core/host_scene.h"
+#include "core/validate.h"
 
 namespace lightsampler {
 
@@ -41,7 +41,7 @@ double acceptance(double expected, float max_density, double area) {
   return bound > 0.0 ? expected / bound : 1.0;
 }
 
-double texel_area(const cpu::TexelTriangle& t) {
+double texel_area(const core::TexelTriangle& t) {
   return 0.5 * std::abs(double(t.edge1[0]) * t.edge2[1] - double(t.edge1[1]) * t.edge2[0]);
 }
 
@@ -49,8 +49,8 @@ double texel_area(const cpu::TexelTriangle& t) {
 
 RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> maps,
                          const Refinement& refinement) {
-  validate_mesh(mesh, maps.size());
-  for (std::size_t i = 0; i < maps.size(); ++i) validate_map(maps[i], i);
+  core::validate_mesh(mesh, maps.size());
+  for (std::size_t i = 0; i < maps.size(); ++i) core::validate_map(maps[i], i);
   std::vector<Part> open(mesh.indices.size() / 3), done, next;
   for (std::uint32_t t = 0; t < open.size(); ++t) open[t] = {t, {{0, 0}, {1, 0}, {0, 1}}};
   Buffer<double> expected;
@@ -61,8 +61,8 @@ RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> m
       break;
     }
     build(mesh, open);
-    const HostScene scene(view(), maps);
-    cpu::count(scene.triangles(), scene.texel_triangles(), scene.maps(), expected, max_density);
+    const core::HostScene scene(view(), maps);
+    core::count(scene.triangles(), scene.texel_triangles(), scene.maps(), expected, max_density);
     next.clear();
     for (std::size_t i = 0; i < open.size(); ++i) {
       // Parts there would be if this one and those after it stayed whole.

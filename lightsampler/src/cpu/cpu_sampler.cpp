@@ -2,19 +2,18 @@
 // requested size.
 
 #include <chrono>
-#include <cmath>
 #include <fstream>
-#include <limits>
-#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <tbb/task_arena.h>
 
+#include "core/counting.h"
+#include "core/frame_policy.h"
+#include "core/host_scene.h"
+#include "core/validate.h"
 #include "cpu/passes.h"
-#include "host_scene.h"
-#include "validate.h"
 
 namespace lightsampler {
 
@@ -52,7 +51,7 @@ class CpuSampler final : public Sampler {
       : threads_(options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency())),
         arena_(int(threads_)),
         device_(cpu_model()),
-        scene_(arena_.execute([&] { return HostScene(mesh, maps); })) {}
+        scene_(arena_.execute([&] { return core::HostScene(mesh, maps); })) {}
 
   std::string backend() const override { return "cpu"; }
   std::string device() const override { return device_; }
@@ -73,12 +72,7 @@ class CpuSampler final : public Sampler {
   }
 
   void generate(const FrameRequest& request, Frame& frame) override {
-    validate_request(request);
-    frame.passes.clear();
-    frame.method = request.method;
-    frame.candidates = frame.exhausted = 0;
-    frame.expected_total = std::numeric_limits<double>::quiet_NaN();
-    frame.counting_used.clear();
+    core::begin_frame(request, frame);
     Stopwatch total, pass;
     arena_.execute([&] {
       if (request.method == Method::trs)
@@ -91,9 +85,9 @@ class CpuSampler final : public Sampler {
 
  private:
   void counting_pass(Frame& frame, Stopwatch& pass) {
-    const double total = cpu::count(scene_.triangles(), scene_.texel_triangles(), scene_.maps(), frame.expected_counts,
+    const double total = core::count(scene_.triangles(), scene_.texel_triangles(), scene_.maps(), frame.expected_counts,
                                     frame.max_density);
-    validate_expected_total(total);
+    core::validate_expected_total(total);
     frame.expected_total = total;
     frame.counting_used = "cpu";
     frame.passes.push_back({"counting", pass.lap_ms()});
@@ -108,14 +102,8 @@ class CpuSampler final : public Sampler {
                                            stream_key(request.seed, Stream::rounding), frame.counts);
     frame.passes.push_back({"rounding", pass.lap_ms()});
 
-    const std::uint64_t n = frame.counts.size();
-    const bool fits = cpu::unordered_scan_fits(n, frame.sample_count);
-    if (request.scan == ScanOrder::unordered && !fits)
-      throw std::overflow_error(std::to_string(n) + " triangles and " +
-                                std::to_string(frame.sample_count) +
-                                " samples do not fit one 64-bit packed counter; use the ordered scan");
     // Automatic: ordered, which is faster on the CPU than contending for one atomic.
-    frame.scan_used = request.scan == ScanOrder::unordered ? ScanOrder::unordered : ScanOrder::ordered;
+    frame.scan_used = core::choose_scan(request.scan, ScanOrder::ordered, frame.counts.size(), frame.sample_count);
     if (frame.scan_used == ScanOrder::unordered)
       cpu::unordered_scan(frame.counts.span(), kScanBlock, frame.cdf, frame.inverse_permutation);
     else
@@ -150,8 +138,8 @@ class CpuSampler final : public Sampler {
     const float bound = cpu::rejection_distribution(scene_.triangles(), scene_.maps(), area_cdf_);
     frame.passes.push_back({"distribution", pass.lap_ms()});
 
-    const bool empty = !(bound > 0) || area_cdf_.empty() || !(area_cdf_[area_cdf_.size() - 1] > 0);
-    frame.sample_count = empty ? 0 : cpu::round_total(target, request.seed);
+    const double total_area = area_cdf_.empty() ? 0.0 : area_cdf_[area_cdf_.size() - 1];
+    frame.sample_count = core::rejection_sample_count(target, bound, total_area, request.seed);
     frame.scan_used = ScanOrder::ordered;
     if (!request.realize) {
       frame.samples.resize(0);
@@ -168,7 +156,7 @@ class CpuSampler final : public Sampler {
   unsigned threads_;
   tbb::task_arena arena_;
   std::string device_;
-  HostScene scene_;
+  core::HostScene scene_;
   Buffer<double> area_cdf_;
 };
 

@@ -1,12 +1,13 @@
 #pragma once
 // The CPU backend's passes (paper, Section 3). Each is a free function over plain arrays so that
-// tests can drive it directly; CpuSampler strings them together and times them.
+// tests can drive it directly; CpuSampler strings them together and times them. The counting
+// pass is the core's (core/counting.h).
 
 #include <cstdint>
 #include <span>
 
-#include "cpu/density.h"
-#include "cpu/geometry.h"
+#include "core/density.h"
+#include "core/geometry.h"
 #include "lightsampler/buffer.h"
 #include "lightsampler/random.h"
 #include "lightsampler/sample.h"
@@ -14,35 +15,10 @@
 
 namespace lightsampler::cpu {
 
-/// Counting pass (Algorithm 2, lines 1-8; Eq. 1-2): per triangle, the exact integral of the
-/// density N-bar_T (texel overlaps by the closed form of Section 4) and the max density D_T^max
-/// over the texels it overlaps. Returns N-bar.
-double count(std::span<const TriangleRecord> triangles,
-             std::span<const TexelTriangle> texel_triangles, std::span<const DensityMap> maps,
-             Buffer<double>& expected_counts, Buffer<float>& max_density);
-
-/// Sum in a fixed order, whatever the thread count: totals must be reproducible.
-double sum(std::span<const double> values);
-
-/// Integral of the density over one triangle and its max density (the body of count()).
-struct TriangleIntegral {
-  double expected;  ///< N-bar_T
-  float max_density;
-};
-TriangleIntegral integrate_triangle(const TriangleRecord& triangle, const TexelTriangle& texel,
-                                    std::span<const DensityMap> maps);
-
 /// Stochastic rounding of scale * N-bar_T (Algorithm 2, lines 12-14): floor, plus one with
 /// probability equal to the fraction, from the rounding stream keyed by triangle. Returns N.
 std::uint64_t round_counts(std::span<const double> expected_counts, double scale, PhiloxKey key,
                            Buffer<std::uint64_t>& counts);
-
-/// The total count of plain rejection sampling: the target rounded stochastically (one draw of
-/// the rounding stream), so that E[N] = target as with TRS.
-std::uint64_t round_total(double target, std::uint64_t seed);
-
-/// Whether Algorithm 3 can pack (processing index, partial sum) into one 64-bit word.
-bool unordered_scan_fits(std::uint64_t elements, std::uint64_t total);
 
 /// Unordered cumulative sum (Algorithm 3): inclusive CDF in processing order and the inverse
 /// permutation. Each task reserves a block of up to `block` consecutive elements with one packed
@@ -64,22 +40,22 @@ struct RealizationResult {
 /// processing index with cdf[p] > i; candidates from Heitz's map are accepted against D_T^max.
 /// The random numbers of a sample are keyed by (triangle, rank of the sample within its
 /// triangle, try), so the set of samples does not depend on scheduling or scan order.
-RealizationResult realize(std::span<const TexelTriangle> triangles,
-                          std::span<const DensityMap> maps, std::span<const float> max_density,
+RealizationResult realize(std::span<const core::TexelTriangle> triangles,
+                          std::span<const core::DensityMap> maps, std::span<const float> max_density,
                           std::span<const std::uint64_t> cdf,
                           std::span<const std::uint32_t> inverse_permutation, PhiloxKey key,
                           std::uint32_t max_tries, Buffer<Sample>& samples);
 
 /// Plain rejection sampling (Algorithm 1): triangles by area, uniform points, accepted against
 /// the global max density. `area_cdf` is the inclusive CDF of triangle areas.
-RealizationResult rejection_sample(std::span<const TexelTriangle> triangles,
-                                   std::span<const DensityMap> maps, std::span<const double> area_cdf,
+RealizationResult rejection_sample(std::span<const core::TexelTriangle> triangles,
+                                   std::span<const core::DensityMap> maps, std::span<const double> area_cdf,
                                    float global_max_density, std::uint64_t sample_count,
                                    PhiloxKey key, std::uint32_t max_tries, Buffer<Sample>& samples);
 
 /// Inclusive CDF of world areas and the max density of every map a triangle uses: what plain
 /// rejection sampling needs. Returns the max density.
-float rejection_distribution(std::span<const TriangleRecord> triangles,
-                             std::span<const DensityMap> maps, Buffer<double>& area_cdf);
+float rejection_distribution(std::span<const core::TriangleRecord> triangles,
+                             std::span<const core::DensityMap> maps, Buffer<double>& area_cdf);
 
 }  // namespace lightsampler::cpu

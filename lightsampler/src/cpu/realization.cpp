@@ -22,20 +22,20 @@ struct Candidate {
   bool accepted;
 };
 
-Candidate draw(const TexelTriangle& t, const DensityMap& map, float bound, std::uint32_t tri,
+Candidate draw(const core::TexelTriangle& t, const core::DensityMap& map, float bound, std::uint32_t tri,
                std::uint64_t rank, std::uint32_t attempt, PhiloxKey key) {
   const PhiloxCounter u =
       philox4x32({tri, std::uint32_t(rank), std::uint32_t(rank >> 32), attempt}, key);
   const Barycentrics b = triangle_map(uniform_float(u[0]), uniform_float(u[1]));
-  const auto [x, y] = texel_space_point(t, b.b1, b.b2);
-  const float d = point_density(map, x, y);
+  const auto [x, y] = core::texel_space_point(t, b.b1, b.b2);
+  const float d = core::point_density(map, x, y);
   return {b, uniform_float(u[2]) * bound < d};
 }
 
 }  // namespace
 
-RealizationResult realize(std::span<const TexelTriangle> triangles,
-                          std::span<const DensityMap> maps, std::span<const float> max_density,
+RealizationResult realize(std::span<const core::TexelTriangle> triangles,
+                          std::span<const core::DensityMap> maps, std::span<const float> max_density,
                           std::span<const std::uint64_t> cdf,
                           std::span<const std::uint32_t> inverse_permutation, PhiloxKey key,
                           std::uint32_t max_tries, Buffer<Sample>& samples) {
@@ -60,11 +60,11 @@ RealizationResult realize(std::span<const TexelTriangle> triangles,
             rank[k] = i0 + k - begin;
           }
           for (int k = 0; k < lanes; ++k) {
-            const TexelTriangle& t = triangles[tri[k]];
+            const core::TexelTriangle& t = triangles[tri[k]];
             first[k] = draw(t, maps[t.map], max_density[tri[k]], tri[k], rank[k], 0, key);
           }
           for (int k = 0; k < lanes; ++k) {
-            const TexelTriangle& t = triangles[tri[k]];
+            const core::TexelTriangle& t = triangles[tri[k]];
             Candidate c = first[k];
             std::uint32_t attempt = 1;
             for (; !c.accepted && attempt < max_tries; ++attempt)

@@ -11,8 +11,8 @@
 
 namespace lightsampler::cpu {
 
-float rejection_distribution(std::span<const TriangleRecord> triangles,
-                             std::span<const DensityMap> maps, Buffer<double>& area_cdf) {
+float rejection_distribution(std::span<const core::TriangleRecord> triangles,
+                             std::span<const core::DensityMap> maps, Buffer<double>& area_cdf) {
   const std::size_t n = triangles.size();
   area_cdf.resize(n);
   tbb::parallel_scan(
@@ -27,7 +27,7 @@ float rejection_distribution(std::span<const TriangleRecord> triangles,
       std::plus<>());
   // D_M^max: the largest texel of any map, scaled. Maps change every frame, so it is recomputed.
   float bound = 0;
-  for (const DensityMap& map : maps) {
+  for (const core::DensityMap& map : maps) {
     const float m = tbb::parallel_reduce(
         tbb::blocked_range<std::size_t>(0, map.texels.size(), 1 << 16), 0.0f,
         [&](const tbb::blocked_range<std::size_t>& r, float acc) {
@@ -40,8 +40,8 @@ float rejection_distribution(std::span<const TriangleRecord> triangles,
   return bound;
 }
 
-RealizationResult rejection_sample(std::span<const TexelTriangle> triangles,
-                                   std::span<const DensityMap> maps, std::span<const double> area_cdf,
+RealizationResult rejection_sample(std::span<const core::TexelTriangle> triangles,
+                                   std::span<const core::DensityMap> maps, std::span<const double> area_cdf,
                                    float global_max_density, std::uint64_t sample_count,
                                    PhiloxKey key, std::uint32_t max_tries, Buffer<Sample>& samples) {
   samples.resize(sample_count);
@@ -63,7 +63,7 @@ RealizationResult rejection_sample(std::span<const TexelTriangle> triangles,
             const auto tri = std::uint32_t(std::min<std::size_t>(
                 std::upper_bound(area_cdf.begin(), area_cdf.end(), pick) - area_cdf.begin(), last));
             const Barycentrics b = triangle_map(uniform_float(u[1]), uniform_float(u[2]));
-            const float d = texel_triangle_density(triangles[tri], maps, b.b1, b.b2);
+            const float d = core::texel_triangle_density(triangles[tri], maps, b.b1, b.b2);
             ++attempt;
             const bool accepted = uniform_float(u[3]) * global_max_density < d;
             if (accepted || attempt == max_tries) {

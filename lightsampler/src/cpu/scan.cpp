@@ -9,13 +9,6 @@
 
 namespace lightsampler::cpu {
 
-bool unordered_scan_fits(std::uint64_t elements, std::uint64_t total) {
-  // The high bits count processed elements (up to `elements`), the low bits hold the partial sum.
-  const int index_bits = std::bit_width(elements);
-  if (index_bits >= 64) return false;
-  return total < (std::uint64_t(1) << (64 - index_bits)) || index_bits == 0;
-}
-
 void unordered_scan(std::span<const std::uint64_t> counts, std::size_t block, Buffer<std::uint64_t>& cdf,
                     Buffer<std::uint32_t>& inverse_permutation) {
   const std::size_t n = counts.size();

@@ -10,11 +10,11 @@ namespace lightsampler::vk {
 namespace {
 
 /// The lattice cells of the triangle's bounding box (float corners, as the shaders compute them).
-LatticeBox bounding_cells(const cpu::TexelTriangle& t) {
+LatticeBox bounding_cells(const core::TexelTriangle& t) {
   const float xs[3] = {t.origin[0], t.origin[0] + t.edge1[0], t.origin[0] + t.edge2[0]};
   const float ys[3] = {t.origin[1], t.origin[1] + t.edge1[1], t.origin[1] + t.edge2[1]};
-  return {cpu::floor_to_int(std::min({xs[0], xs[1], xs[2]})), cpu::floor_to_int(std::min({ys[0], ys[1], ys[2]})),
-          cpu::floor_to_int(std::max({xs[0], xs[1], xs[2]})), cpu::floor_to_int(std::max({ys[0], ys[1], ys[2]}))};
+  return {core::floor_to_int(std::min({xs[0], xs[1], xs[2]})), core::floor_to_int(std::min({ys[0], ys[1], ys[2]})),
+          core::floor_to_int(std::max({xs[0], xs[1], xs[2]})), core::floor_to_int(std::max({ys[0], ys[1], ys[2]}))};
 }
 
 void extend(LatticeBox& box, const LatticeBox& cells) {
@@ -51,7 +51,7 @@ void GpuScene::update_map(std::size_t index, const DensityMapView& map) {
 void GpuScene::upload_maps() {
   std::vector<gpu::GpuMap> records;
   std::vector<float> texels;
-  for (const cpu::DensityMap& m : host_.maps()) {
+  for (const core::DensityMap& m : host_.maps()) {
     if (texels.size() + m.texels.size() > 0xffffffffull)
       throw std::length_error("density maps hold more than 2^32 texels in all");
     records.push_back({std::uint32_t(texels.size()), m.width, m.height, std::uint32_t(m.addressing), m.scale, 0, 0, 0});
@@ -74,7 +74,7 @@ void GpuScene::upload_triangles() {
   candidate_cells_ = 0;
   std::vector<gpu::GpuTriangle> gpu(records.size());
   for (std::size_t t = 0; t < records.size(); ++t) {
-    const cpu::TexelTriangle& tt = texel_triangles[t];
+    const core::TexelTriangle& tt = texel_triangles[t];
     gpu[t] = {tt.origin[0], tt.origin[1], tt.edge1[0], tt.edge1[1], tt.edge2[0], tt.edge2[1],
               float(records[t].area), tt.map};
     if (tt.map == kNoMap) continue;

@@ -5,7 +5,7 @@
 #include <span>
 #include <vector>
 
-#include "host_scene.h"
+#include "core/host_scene.h"
 #include "vulkan/context.h"
 
 namespace lightsampler::vk {
@@ -22,7 +22,7 @@ class GpuScene {
 
   void update_map(std::size_t index, const DensityMapView& map);
 
-  const HostScene& host() const { return host_; }
+  const core::HostScene& host() const { return host_; }
   std::uint32_t triangle_count() const { return std::uint32_t(host_.triangles().size()); }
   double total_area() const { return total_area_; }
   std::span<const LatticeBox> map_boxes() const { return map_boxes_; }
@@ -40,7 +40,7 @@ class GpuScene {
   void upload_triangles();
 
   Context& context_;
-  HostScene host_;
+  core::HostScene host_;
   std::vector<LatticeBox> map_boxes_;
   std::uint64_t candidate_cells_ = 0;
   Buffer triangles_, map_records_, texels_, area_cdf_;

@@ -6,13 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 
-#include "cpu/passes.h"
-#include "validate.h"
+#include "core/frame_policy.h"
+#include "core/validate.h"
 #include "vulkan/gpu_scene.h"
 #include "vulkan/passes.h"
 #include "spirv/count_raster_frag.h"
@@ -87,13 +86,8 @@ class VulkanSampler final : public Sampler {
   }
 
   void generate(const FrameRequest& request, Frame& frame) override {
-    validate_request(request);
+    core::begin_frame(request, frame);
     const auto start = std::chrono::steady_clock::now();
-    frame.passes.clear();
-    frame.method = request.method;
-    frame.candidates = frame.exhausted = 0;
-    frame.expected_total = std::numeric_limits<double>::quiet_NaN();
-    frame.counting_used.clear();
     if (request.method == Method::trs)
       generate_trs(request, frame);
     else
@@ -231,13 +225,10 @@ class VulkanSampler final : public Sampler {
     c.timestamp("rounding");
     const gpu::GpuTotals counted = submit(c, frame);
     frame.expected_total = counted.expected_total;
-    validate_expected_total(frame.expected_total);
+    core::validate_expected_total(frame.expected_total);
     frame.sample_count = counted.sample_count;
-    const bool fits = cpu::unordered_scan_fits(n_tri, frame.sample_count);
-    if (request.scan == ScanOrder::unordered && !fits)
-      throw std::overflow_error(std::to_string(n_tri) + " triangles and " + std::to_string(frame.sample_count) +
-                                " samples do not fit one 64-bit packed counter; use the ordered scan");
-    frame.scan_used = request.scan == ScanOrder::ordered || !fits ? ScanOrder::ordered : ScanOrder::unordered;
+    // Automatic: unordered, one packed atomic per subgroup (Section 5).
+    frame.scan_used = core::choose_scan(request.scan, ScanOrder::unordered, n_tri, frame.sample_count);
     if (request.realize) ensure_samples(frame.sample_count);
 
     Commands d = context_->begin();
@@ -283,12 +274,12 @@ class VulkanSampler final : public Sampler {
       target = *request.target_count;
     } else {
       frame.expected_total = bounded.expected_total;
-      validate_expected_total(frame.expected_total);
+      core::validate_expected_total(frame.expected_total);
       target = frame.expected_total;
     }
     const float bound = std::bit_cast<float>(bounded.max_density_bits);
-    const bool empty = !(bound > 0) || n_tri == 0 || !(scene_.total_area() > 0);
-    frame.sample_count = empty ? 0 : cpu::round_total(target, request.seed);
+    frame.sample_count =
+        core::rejection_sample_count(target, bound, n_tri > 0 ? scene_.total_area() : 0.0, request.seed);
     frame.scan_used = ScanOrder::ordered;
     if (request.realize) ensure_samples(frame.sample_count);
     Commands d = context_->begin();

@@ -6,7 +6,7 @@
 #include "lightsampler/mesh.h"
 #include "lightsampler/sampler.h"
 
-namespace lightsampler {
+namespace lightsampler::core {
 
 /// Throws std::invalid_argument naming the first problem (what and where), or std::length_error
 /// for 2^32 triangles or more.
@@ -24,4 +24,4 @@ void validate_request(const FrameRequest& request);
 /// Throws std::overflow_error when the density integrates to more than 2^63 samples.
 void validate_expected_total(double total);
 
-}  // namespace lightsampler
+}  // namespace lightsampler::core

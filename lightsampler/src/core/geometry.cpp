@@ -1,8 +1,8 @@
-#include "cpu/geometry.h"
+#include "core/geometry.h"
 
 #include <cmath>
 
-namespace lightsampler::cpu {
+namespace lightsampler::core {
 
 std::vector<TriangleRecord> make_triangle_records(const MeshView& mesh, std::size_t map_count) {
   const std::size_t n = mesh.triangle_count();
@@ -51,4 +51,4 @@ TexelTriangle make_texel_triangle(const TriangleRecord& t, std::span<const Densi
   return out;
 }
 
-}  // namespace lightsampler::cpu
+}  // namespace lightsampler::core

@@ -8,10 +8,10 @@
 #include <span>
 #include <vector>
 
-#include "cpu/density.h"
+#include "core/density.h"
 #include "lightsampler/mesh.h"
 
-namespace lightsampler::cpu {
+namespace lightsampler::core {
 
 /// What the sampler keeps of one triangle: its UVs, world area and map.
 struct TriangleRecord {
@@ -58,4 +58,4 @@ inline std::optional<Texel> texel_triangle_texel(const TexelTriangle& t,
   return cell_texel(maps[t.map], t.map, floor_to_int(x), floor_to_int(y));
 }
 
-}  // namespace lightsampler::cpu
+}  // namespace lightsampler::core

@@ -8,7 +8,7 @@
 
 #include "lightsampler/mesh.h"
 
-namespace lightsampler::cpu {
+namespace lightsampler::core {
 
 struct DensityMap {
   std::vector<float> texels;
@@ -50,4 +50,4 @@ inline float point_density(const DensityMap& map, float x, float y) {
   return cell_density(map, floor_to_int(x), floor_to_int(y));
 }
 
-}  // namespace lightsampler::cpu
+}  // namespace lightsampler::core

@@ -1,4 +1,4 @@
-#include "host_scene.h"
+#include "core/host_scene.h"
 
 #include <stdexcept>
 #include <string>
@@ -6,13 +6,13 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "validate.h"
+#include "core/validate.h"
 
-namespace lightsampler {
+namespace lightsampler::core {
 
 namespace {
 
-cpu::DensityMap copy_map(const DensityMapView& view) {
+DensityMap copy_map(const DensityMapView& view) {
   return {{view.texels.begin(), view.texels.end()}, view.width, view.height, view.addressing, view.scale};
 }
 
@@ -24,7 +24,7 @@ HostScene::HostScene(const MeshView& mesh, std::span<const DensityMapView> maps)
     validate_map(maps[i], i);
     maps_.push_back(copy_map(maps[i]));
   }
-  triangles_ = cpu::make_triangle_records(mesh, maps.size());
+  triangles_ = make_triangle_records(mesh, maps.size());
   texel_triangles_.resize(triangles_.size());
   build_texel_triangles(kAllMaps);
 }
@@ -40,18 +40,18 @@ bool HostScene::update_map(std::size_t index, const DensityMapView& map) {
   return resized;
 }
 
-const cpu::TexelTriangle& HostScene::texel_triangle(std::uint32_t triangle) const {
+const TexelTriangle& HostScene::texel_triangle(std::uint32_t triangle) const {
   if (triangle >= texel_triangles_.size())
     throw std::out_of_range("triangle " + std::to_string(triangle) + " does not exist");
   return texel_triangles_[triangle];
 }
 
 float HostScene::density(std::uint32_t triangle, float b1, float b2) const {
-  return cpu::texel_triangle_density(texel_triangle(triangle), maps_, b1, b2);
+  return texel_triangle_density(texel_triangle(triangle), maps_, b1, b2);
 }
 
 std::optional<Texel> HostScene::texel(std::uint32_t triangle, float b1, float b2) const {
-  return cpu::texel_triangle_texel(texel_triangle(triangle), maps_, b1, b2);
+  return texel_triangle_texel(texel_triangle(triangle), maps_, b1, b2);
 }
 
 void HostScene::build_texel_triangles(std::size_t map) {
@@ -59,8 +59,8 @@ void HostScene::build_texel_triangles(std::size_t map) {
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i)
                         if (map == kAllMaps || triangles_[i].map == map)
-                          texel_triangles_[i] = cpu::make_texel_triangle(triangles_[i], maps_);
+                          texel_triangles_[i] = make_texel_triangle(triangles_[i], maps_);
                     });
 }
 
-}  // namespace lightsampler
+}  // namespace lightsampler::core

@@ -1,10 +1,10 @@
-#include "validate.h"
+#include "core/validate.h"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-namespace lightsampler {
+namespace lightsampler::core {
 
 namespace {
 
@@ -114,4 +114,4 @@ void validate_map(const DensityMapView& map, std::size_t index) {
   }
 }
 
-}  // namespace lightsampler
+}  // namespace lightsampler::core

@@ -5,10 +5,10 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
-#include "cpu/passes.h"
+#include "core/counting.h"
 #include "lightsampler/overlap.h"
 
-namespace lightsampler::cpu {
+namespace lightsampler::core {
 
 namespace {
 
@@ -202,4 +202,4 @@ double sum(std::span<const double> values) {
       std::plus<>());
 }
 
-}  // namespace lightsampler::cpu
+}  // namespace lightsampler::core

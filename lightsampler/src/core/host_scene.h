@@ -7,11 +7,11 @@
 #include <span>
 #include <vector>
 
-#include "cpu/density.h"
-#include "cpu/geometry.h"
+#include "core/density.h"
+#include "core/geometry.h"
 #include "lightsampler/mesh.h"
 
-namespace lightsampler {
+namespace lightsampler::core {
 
 class HostScene {
  public:
@@ -27,20 +27,20 @@ class HostScene {
   /// The texel density() reads there.
   std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const;
 
-  std::span<const cpu::TriangleRecord> triangles() const { return triangles_; }
-  std::span<const cpu::DensityMap> maps() const { return maps_; }
-  std::span<const cpu::TexelTriangle> texel_triangles() const { return texel_triangles_; }
+  std::span<const TriangleRecord> triangles() const { return triangles_; }
+  std::span<const DensityMap> maps() const { return maps_; }
+  std::span<const TexelTriangle> texel_triangles() const { return texel_triangles_; }
 
  private:
   static constexpr std::size_t kAllMaps = ~std::size_t(0);
   /// Texel-space triangles depend on their map's size (in parallel: meshes can be large).
   void build_texel_triangles(std::size_t map);
   /// Throws std::out_of_range for a triangle that does not exist.
-  const cpu::TexelTriangle& texel_triangle(std::uint32_t triangle) const;
+  const TexelTriangle& texel_triangle(std::uint32_t triangle) const;
 
-  std::vector<cpu::DensityMap> maps_;
-  std::vector<cpu::TriangleRecord> triangles_;
-  std::vector<cpu::TexelTriangle> texel_triangles_;
+  std::vector<DensityMap> maps_;
+  std::vector<TriangleRecord> triangles_;
+  std::vector<TexelTriangle> texel_triangles_;
 };
 
-}  // namespace lightsampler
+}  // namespace lightsampler::core

@@ -1,0 +1,30 @@
+#pragma once
+// The counting pass (Algorithm 2, lines 1-8; Eq. 1-2) on the host: the exact integral of the
+// density over each triangle. The CPU backend's counting pass, and what the adaptive subdivision
+// measures its triangles with.
+
+#include <span>
+
+#include "core/density.h"
+#include "core/geometry.h"
+#include "lightsampler/buffer.h"
+
+namespace lightsampler::core {
+
+/// Per triangle, the exact integral of the density N-bar_T (texel overlaps by the closed form of
+/// Section 4) and the max density D_T^max over the texels it overlaps. Returns N-bar.
+double count(std::span<const TriangleRecord> triangles, std::span<const TexelTriangle> texel_triangles,
+             std::span<const DensityMap> maps, Buffer<double>& expected_counts, Buffer<float>& max_density);
+
+/// Sum in a fixed order, whatever the thread count: totals must be reproducible.
+double sum(std::span<const double> values);
+
+/// Integral of the density over one triangle and its max density (the body of count()).
+struct TriangleIntegral {
+  double expected;  ///< N-bar_T
+  float max_density;
+};
+TriangleIntegral integrate_triangle(const TriangleRecord& triangle, const TexelTriangle& texel,
+                                    std::span<const DensityMap> maps);
+
+}  // namespace lightsampler::core
