@@ -40,10 +40,10 @@ layout(buffer_reference, std430, buffer_reference_align = 4) buffer Floats { flo
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer Uints { uint v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 8) buffer Uint64s { uint64_t v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 8) buffer Doubles { double v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer Triangles { GpuTriangle v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer Maps { GpuMap v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer Samples { GpuSample v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 8) buffer Totals { GpuTotals t; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer Triangles { TexelTriangle v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer Maps { DensityMap v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer Samples { Sample v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer Totals { FrameTotals t; };
 
 // Element i of a uint64 array beyond 2^32 elements: index by address arithmetic.
 Uint64s uint64_at(uint64_t base, uint64_t i) { return Uint64s(base + i * 8ul); }
@@ -59,7 +59,7 @@ uint address(int64_t i, uint n, uint addressing) {
   return n - 1u - uint(uint64_t(-(i + 1l)) % uint64_t(n));
 }
 
-float cell_density(GpuMap map, uint64_t texels, int64_t ix, int64_t iy) {
+float cell_density(DensityMap map, uint64_t texels, int64_t ix, int64_t iy) {
   uint index = map.offset + address(iy, map.height, map.addressing) * map.width +
                address(ix, map.width, map.addressing);
   return Floats(texels).v[index] * map.scale;
@@ -71,7 +71,7 @@ int64_t floor_to_int(float x) {
   return float(i) > x ? i - 1l : i;
 }
 
-float point_density(GpuMap map, uint64_t texels, float x, float y) {
+float point_density(DensityMap map, uint64_t texels, float x, float y) {
   return cell_density(map, texels, floor_to_int(x), floor_to_int(y));
 }
 
@@ -107,20 +107,20 @@ vec2 triangle_map(float u0, float u1) {
 
 // The texel-space point at barycentrics (b1, b2). precise: no fused multiply-add, so the texel
 // it falls in is the one the CPU backend reads, bit for bit.
-vec2 texel_point(GpuTriangle t, vec2 b) {
+vec2 texel_point(TexelTriangle t, vec2 b) {
   precise float x = t.origin_x + b.x * t.edge1_x + b.y * t.edge2_x;
   precise float y = t.origin_y + b.x * t.edge1_y + b.y * t.edge2_y;
   return vec2(x, y);
 }
 
 // Density at barycentrics (b1, b2) of a triangle, as the realization pass reads it.
-float triangle_density(GpuTriangle t, Maps maps, uint64_t texels, vec2 b) {
+float triangle_density(TexelTriangle t, Maps maps, uint64_t texels, vec2 b) {
   if (t.map == kNoMap) return 0.0;
   vec2 p = texel_point(t, b);
   return point_density(maps.v[t.map], texels, p.x, p.y);
 }
 
-bool uv_degenerate(GpuTriangle t) {
+bool uv_degenerate(TexelTriangle t) {
   return t.edge1_x == 0.0 && t.edge1_y == 0.0 && t.edge2_x == 0.0 && t.edge2_y == 0.0;
 }
 

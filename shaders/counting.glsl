@@ -6,15 +6,15 @@
 #include "common.glsl"
 #include "overlap.glsl"
 
-struct TexelTriangle {
+struct TriangleCells {
   vec2 a, b, c;
   int64_t first_x, first_y;  // lattice cell of the bounding box's corner
   uint64_t columns, rows;
   float uv_area;             // texel units squared
 };
 
-TexelTriangle texel_triangle(GpuTriangle t) {
-  TexelTriangle r;
+TriangleCells triangle_cells(TexelTriangle t) {
+  TriangleCells r;
   r.a = vec2(t.origin_x, t.origin_y);
   r.b = r.a + vec2(t.edge1_x, t.edge1_y);
   r.c = r.a + vec2(t.edge2_x, t.edge2_y);
@@ -52,7 +52,7 @@ void accumulate(uint64_t expected, uint64_t max_density, uint tri, float contrib
 // Where the cell [lo, hi] lies against the triangle: -1 wholly outside one edge (no overlap),
 // +1 wholly inside every edge (full overlap), 0 across an edge (the closed form decides). Edge
 // functions in double, like the overlap itself.
-int classify(TexelTriangle tt, dvec2 lo, dvec2 hi) {
+int classify(TriangleCells tt, dvec2 lo, dvec2 hi) {
   dvec2 v[3] = dvec2[3](dvec2(tt.a), dvec2(tt.b), dvec2(tt.c));
   double orientation = sign((v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[1].y - v[0].y) * (v[2].x - v[0].x));
   bool inside = true;
@@ -69,7 +69,7 @@ int classify(TexelTriangle tt, dvec2 lo, dvec2 hi) {
 
 // Contribution of lattice cell (ix, iy) to a triangle: density times overlap, scaled from
 // texel area to world area. Returns the density read, zero where the overlap is empty.
-float cell_contribution(GpuTriangle t, TexelTriangle tt, GpuMap map, uint64_t texels, int64_t ix,
+float cell_contribution(TexelTriangle t, TriangleCells tt, DensityMap map, uint64_t texels, int64_t ix,
                         int64_t iy, out float density) {
   // Cells beyond the bounding box (the raster path's dilation reaches them) only touch the
   // triangle: the CPU backend never visits them, and the closed form's rounding could give one

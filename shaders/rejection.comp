@@ -17,7 +17,7 @@ uint pick_triangle(double target) {
   return lo;
 }
 
-// One sample per invocation, as in realize.comp (lavapipe's shared loop limiter).
+// One sample per invocation, as in realization.comp (lavapipe's shared loop limiter).
 void main() {
   Totals totals = Totals(p.totals);
   uint64_t i = p.first + uint64_t(gl_GlobalInvocationID.x);
@@ -39,7 +39,7 @@ void main() {
       ++attempt;
       accepted = uniform_float(u.w) * bound < triangle_density(triangles.v[tri], maps, p.texels, b);
     }
-    Samples(p.samples + i * 12ul).v[0] = GpuSample(tri, b.x, b.y);
+    Samples(p.samples + i * uint64_t(kSampleBytes)).v[0] = Sample(tri, b.x, b.y);
     tries = attempt;
     gave_up = accepted ? 0ul : 1ul;
   }

@@ -24,9 +24,9 @@ LS_CONST uint kCellsPerRun = 16;
 LS_CONST uint kAddressWrap = 0u;
 LS_CONST uint kAddressClamp = 1u;
 
-/// A triangle in its map's texel space (as the CPU backend's TexelTriangle): a point with
+/// A triangle in its map's texel space, the twin of core::TexelTriangle: a point with
 /// barycentrics (b1, b2) is at origin + b1 edge1 + b2 edge2; zero edges: UV-degenerate.
-struct GpuTriangle {
+struct TexelTriangle {
   float origin_x, origin_y;
   float edge1_x, edge1_y;
   float edge2_x, edge2_y;
@@ -34,7 +34,7 @@ struct GpuTriangle {
   uint map;    // kNoMap: zero density
 };
 
-struct GpuMap {
+struct DensityMap {
   uint offset;  // first texel in the texel buffer
   uint width;
   uint height;
@@ -43,14 +43,16 @@ struct GpuMap {
   uint pad0, pad1, pad2;
 };
 
-struct GpuSample {
+/// The twin of lightsampler::Sample, kSampleBytes apart in the sample buffer.
+struct Sample {
   uint triangle;
   float b1;
   float b2;
 };
+LS_CONST uint kSampleBytes = 12;
 
 /// Frame totals, written by the passes, read back by the host.
-struct GpuTotals {
+struct FrameTotals {
   float expected_total;  // N-bar (float atomic sum of N-bar_T)
   uint max_density_bits; // rejection sampling's global bound, as float bits
   uint64_t sample_count; // N
@@ -61,15 +63,15 @@ struct GpuTotals {
 };
 
 /// Addresses of the resident and per-frame buffers; every pass takes the ones it needs.
-struct CountPush {
-  uint64_t triangles;    // GpuTriangle[T]
-  uint64_t maps;         // GpuMap[]
+struct CountingPush {
+  uint64_t triangles;    // TexelTriangle[T]
+  uint64_t maps;         // DensityMap[]
   uint64_t texels;       // float[]
   uint64_t expected;     // float[T], N-bar_T
   uint64_t max_density;  // uint[T], D_T^max as float bits
   uint64_t footprint;    // uint64[T], lattice cells of each triangle's bounding box
   uint64_t cell_cdf;     // uint64[T], inclusive prefix sum of the footprints
-  uint64_t totals;       // GpuTotals
+  uint64_t totals;       // FrameTotals
   uint triangle_count;
   uint pad0;
 };
@@ -88,7 +90,7 @@ struct RasterPush {
                              // vertex snapping and float rounding
 };
 
-struct RoundPush {
+struct RoundingPush {
   uint64_t expected;
   uint64_t counts;    // uint64[T], N_T
   uint64_t totals;
@@ -109,7 +111,7 @@ struct ScanPush {
   uint pad0;
 };
 
-struct RealizePush {
+struct RealizationPush {
   uint64_t triangles;
   uint64_t maps;
   uint64_t texels;

@@ -2,7 +2,7 @@
 // Counter-based random numbers: Philox4x32-10 (Salmon et al., "Parallel random numbers: as easy
 // as 1, 2, 3", SC 2011). A sample's random numbers are a pure function of (key, counter), so the
 // output does not depend on thread count, scheduling or backend. The GLSL twin is philox4x32 in
-// shaders/random.glsl.
+// shaders/common.glsl.
 
 #include <array>
 #include <cstdint>

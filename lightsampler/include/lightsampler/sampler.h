@@ -71,7 +71,7 @@ struct Frame {
   std::uint64_t exhausted = 0;      ///< samples that reached max_tries
   Method method = Method::trs;
   ScanOrder scan_used = ScanOrder::ordered;
-  std::string counting_used;        ///< "cpu", "raster" or "compute"; empty when not counted
+  std::string counting_used;        ///< "cpu", "raster", "compute" or "per-triangle"; empty when not counted
   std::vector<PassTime> passes;     ///< time per pass, in order
   double total_ms = 0;
 };

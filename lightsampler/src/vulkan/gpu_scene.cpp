@@ -49,7 +49,7 @@ void GpuScene::update_map(std::size_t index, const DensityMapView& map) {
 }
 
 void GpuScene::upload_maps() {
-  std::vector<gpu::GpuMap> records;
+  std::vector<gpu::DensityMap> records;
   std::vector<float> texels;
   for (const core::DensityMap& m : host_.maps()) {
     if (texels.size() + m.texels.size() > 0xffffffffull)
@@ -57,12 +57,12 @@ void GpuScene::upload_maps() {
     records.push_back({std::uint32_t(texels.size()), m.width, m.height, std::uint32_t(m.addressing), m.scale, 0, 0, 0});
     texels.insert(texels.end(), m.texels.begin(), m.texels.end());
   }
-  if (map_records_.size() < records.size() * sizeof(gpu::GpuMap) || !map_records_)
-    map_records_ = context_.create_buffer(records.size() * sizeof(gpu::GpuMap));
+  if (map_records_.size() < records.size() * sizeof(gpu::DensityMap) || !map_records_)
+    map_records_ = context_.create_buffer(records.size() * sizeof(gpu::DensityMap));
   if (texels_.size() < texels.size() * sizeof(float) || !texels_)
     texels_ = context_.create_buffer(texels.size() * sizeof(float));
   if (!records.empty()) {
-    context_.upload(map_records_, 0, records.data(), records.size() * sizeof(gpu::GpuMap));
+    context_.upload(map_records_, 0, records.data(), records.size() * sizeof(gpu::DensityMap));
     context_.upload(texels_, 0, texels.data(), texels.size() * sizeof(float));
   }
 }
@@ -72,7 +72,7 @@ void GpuScene::upload_triangles() {
   const auto texel_triangles = host_.texel_triangles();
   map_boxes_.assign(host_.maps().size(), {0, 0, -1, -1});
   candidate_cells_ = 0;
-  std::vector<gpu::GpuTriangle> gpu(records.size());
+  std::vector<gpu::TexelTriangle> gpu(records.size());
   for (std::size_t t = 0; t < records.size(); ++t) {
     const core::TexelTriangle& tt = texel_triangles[t];
     gpu[t] = {tt.origin[0], tt.origin[1], tt.edge1[0], tt.edge1[1], tt.edge2[0], tt.edge2[1],
@@ -82,8 +82,8 @@ void GpuScene::upload_triangles() {
     extend(map_boxes_[tt.map], cells);
     candidate_cells_ += std::uint64_t(cells.x1 - cells.x0 + 1) * std::uint64_t(cells.y1 - cells.y0 + 1);
   }
-  if (!triangles_) triangles_ = context_.create_buffer(gpu.size() * sizeof(gpu::GpuTriangle));
-  if (!gpu.empty()) context_.upload(triangles_, 0, gpu.data(), gpu.size() * sizeof(gpu::GpuTriangle));
+  if (!triangles_) triangles_ = context_.create_buffer(gpu.size() * sizeof(gpu::TexelTriangle));
+  if (!gpu.empty()) context_.upload(triangles_, 0, gpu.data(), gpu.size() * sizeof(gpu::TexelTriangle));
 }
 
 }  // namespace lightsampler::vk

@@ -3,23 +3,24 @@
 
 #include <cstddef>
 
+#include "lightsampler/sample.h"
 #include "shared.h"
 
 namespace lightsampler::gpu {
 
-static_assert(sizeof(GpuTriangle) == 32 && offsetof(GpuTriangle, area) == 24 && offsetof(GpuTriangle, map) == 28);
-static_assert(sizeof(GpuMap) == 32 && offsetof(GpuMap, scale) == 16);
-static_assert(sizeof(GpuSample) == 12);
-static_assert(sizeof(GpuTotals) == 48 && offsetof(GpuTotals, sample_count) == 8 &&
-              offsetof(GpuTotals, scan_counter) == 16 && offsetof(GpuTotals, cells) == 40);
-static_assert(sizeof(CountPush) == 72 && offsetof(CountPush, triangle_count) == 64);
+static_assert(sizeof(TexelTriangle) == 32 && offsetof(TexelTriangle, area) == 24 && offsetof(TexelTriangle, map) == 28);
+static_assert(sizeof(DensityMap) == 32 && offsetof(DensityMap, scale) == 16);
+static_assert(sizeof(Sample) == kSampleBytes && sizeof(lightsampler::Sample) == kSampleBytes);
+static_assert(sizeof(FrameTotals) == 48 && offsetof(FrameTotals, sample_count) == 8 &&
+              offsetof(FrameTotals, scan_counter) == 16 && offsetof(FrameTotals, cells) == 40);
+static_assert(sizeof(CountingPush) == 72 && offsetof(CountingPush, triangle_count) == 64);
 static_assert(sizeof(RasterPush) == 72 && offsetof(RasterPush, origin_x) == 48 && offsetof(RasterPush, map) == 64);
-static_assert(sizeof(RoundPush) == 48 && offsetof(RoundPush, target) == 24 && offsetof(RoundPush, key0) == 32);
+static_assert(sizeof(RoundingPush) == 48 && offsetof(RoundingPush, target) == 24 && offsetof(RoundingPush, key0) == 32);
 static_assert(sizeof(ScanPush) == 56 && offsetof(ScanPush, sum_bits) == 48);
-static_assert(sizeof(RealizePush) == 88 && offsetof(RealizePush, first) == 64 && offsetof(RealizePush, key0) == 72);
+static_assert(sizeof(RealizationPush) == 88 && offsetof(RealizationPush, first) == 64 && offsetof(RealizationPush, key0) == 72);
 static_assert(sizeof(RejectionPush) == 88 && offsetof(RejectionPush, first) == 56 &&
               offsetof(RejectionPush, key0) == 64 && offsetof(RejectionPush, map) == 84);
 // Vulkan guarantees 128 bytes of push constants.
-static_assert(sizeof(RealizePush) <= 128 && sizeof(RejectionPush) <= 128);
+static_assert(sizeof(RealizationPush) <= 128 && sizeof(RejectionPush) <= 128);
 
 }  // namespace lightsampler::gpu

@@ -2,31 +2,31 @@
 
 #include <algorithm>
 
-#include "spirv/count_cells_comp.h"
-#include "spirv/count_setup_comp.h"
-#include "spirv/count_triangles_comp.h"
-#include "spirv/realize_comp.h"
-#include "spirv/rejection_bound_comp.h"
+#include "spirv/counting_cells_comp.h"
+#include "spirv/counting_setup_comp.h"
+#include "spirv/counting_triangles_comp.h"
+#include "spirv/realization_comp.h"
+#include "spirv/rejection_distribution_comp.h"
 #include "spirv/rejection_comp.h"
-#include "spirv/round_comp.h"
+#include "spirv/rounding_comp.h"
 #include "spirv/scan_add_comp.h"
 #include "spirv/scan_local_comp.h"
 #include "spirv/scan_unordered_comp.h"
-#include "spirv/total_comp.h"
+#include "spirv/counting_total_comp.h"
 
 namespace lightsampler::vk {
 
 Pipelines::Pipelines(Context& c)
-    : count_setup(c.create_compute(spirv::count_setup_comp, sizeof(gpu::CountPush))),
-      count_cells(c.create_compute(spirv::count_cells_comp, sizeof(gpu::CountPush))),
-      count_triangles(c.create_compute(spirv::count_triangles_comp, sizeof(gpu::CountPush))),
-      total(c.create_compute(spirv::total_comp, sizeof(gpu::CountPush))),
-      round(c.create_compute(spirv::round_comp, sizeof(gpu::RoundPush))),
+    : counting_setup(c.create_compute(spirv::counting_setup_comp, sizeof(gpu::CountingPush))),
+      counting_cells(c.create_compute(spirv::counting_cells_comp, sizeof(gpu::CountingPush))),
+      counting_triangles(c.create_compute(spirv::counting_triangles_comp, sizeof(gpu::CountingPush))),
+      counting_total(c.create_compute(spirv::counting_total_comp, sizeof(gpu::CountingPush))),
+      rounding(c.create_compute(spirv::rounding_comp, sizeof(gpu::RoundingPush))),
       scan_unordered(c.create_compute(spirv::scan_unordered_comp, sizeof(gpu::ScanPush))),
       scan_local(c.create_compute(spirv::scan_local_comp, sizeof(gpu::ScanPush))),
       scan_add(c.create_compute(spirv::scan_add_comp, sizeof(gpu::ScanPush))),
-      realize(c.create_compute(spirv::realize_comp, sizeof(gpu::RealizePush))),
-      rejection_bound(c.create_compute(spirv::rejection_bound_comp, sizeof(gpu::RejectionPush))),
+      realization(c.create_compute(spirv::realization_comp, sizeof(gpu::RealizationPush))),
+      rejection_distribution(c.create_compute(spirv::rejection_distribution_comp, sizeof(gpu::RejectionPush))),
       rejection(c.create_compute(spirv::rejection_comp, sizeof(gpu::RejectionPush))) {}
 
 std::uint32_t workgroups_for(std::uint64_t elements) {

@@ -11,8 +11,8 @@ namespace lightsampler::vk {
 
 struct Pipelines {
   explicit Pipelines(Context& context);
-  ComputePipeline count_setup, count_cells, count_triangles, total, round, scan_unordered, scan_local, scan_add,
-      realize, rejection_bound, rejection;
+  ComputePipeline counting_setup, counting_cells, counting_triangles, counting_total, rounding, scan_unordered,
+      scan_local, scan_add, realization, rejection_distribution, rejection;
 };
 
 /// Workgroups for a grid-stride pass over `elements` (at least one, at most kMaxWorkgroups).

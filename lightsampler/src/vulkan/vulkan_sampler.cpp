@@ -14,9 +14,9 @@
 #include "core/validate.h"
 #include "vulkan/gpu_scene.h"
 #include "vulkan/passes.h"
-#include "spirv/count_raster_frag.h"
-#include "spirv/count_raster_geom.h"
-#include "spirv/count_raster_vert.h"
+#include "spirv/counting_raster_frag.h"
+#include "spirv/counting_raster_geom.h"
+#include "spirv/counting_raster_vert.h"
 
 namespace lightsampler {
 
@@ -65,8 +65,8 @@ class VulkanSampler final : public Sampler {
     buffers_.identity = context_->create_buffer(t * sizeof(std::uint32_t));
     if (!identity.empty())
       context_->upload(buffers_.identity, 0, identity.data(), identity.size() * sizeof(std::uint32_t));
-    buffers_.totals = context_->create_buffer(sizeof(gpu::GpuTotals));
-    buffers_.totals_readback = context_->create_buffer(sizeof(gpu::GpuTotals), /*host_visible=*/true);
+    buffers_.totals = context_->create_buffer(sizeof(gpu::FrameTotals));
+    buffers_.totals_readback = context_->create_buffer(sizeof(gpu::FrameTotals), /*host_visible=*/true);
   }
 
   std::string backend() const override { return "vulkan"; }
@@ -97,10 +97,10 @@ class VulkanSampler final : public Sampler {
 
  private:
   /// Runs `c`, whose passes end with a barrier, and returns the frame's totals after it.
-  gpu::GpuTotals submit(Commands& c, Frame& frame) {
-    c.copy(buffers_.totals, 0, buffers_.totals_readback, 0, sizeof(gpu::GpuTotals));
+  gpu::FrameTotals submit(Commands& c, Frame& frame) {
+    c.copy(buffers_.totals, 0, buffers_.totals_readback, 0, sizeof(gpu::FrameTotals));
     add_passes(frame, context_->submit(c));
-    gpu::GpuTotals t;
+    gpu::FrameTotals t;
     std::memcpy(&t, buffers_.totals_readback.mapped(), sizeof t);
     return t;
   }
@@ -109,7 +109,7 @@ class VulkanSampler final : public Sampler {
     for (const auto& [name, ms] : times) frame.passes.push_back({name, ms});
   }
 
-  gpu::CountPush count_push() const {
+  gpu::CountingPush count_push() const {
     return {scene_.triangles(), scene_.map_records(), scene_.texels(), buffers_.expected.address(),
             buffers_.max_density.address(), buffers_.footprint.address(), buffers_.cell_cdf.address(),
             buffers_.totals.address(), scene_.triangle_count(), 0};
@@ -117,26 +117,26 @@ class VulkanSampler final : public Sampler {
 
   /// Counting (Algorithm 2, lines 1-8) and the total N-bar, recorded into `c`.
   void record_counting(Commands& c, const FrameRequest& request, Frame& frame) {
-    const gpu::CountPush push = count_push();
+    const gpu::CountingPush push = count_push();
     const std::uint32_t groups = workgroups_for(scene_.triangle_count());
-    c.dispatch(pipelines_.count_setup, &push, sizeof push, groups);
+    c.dispatch(pipelines_.counting_setup, &push, sizeof push, groups);
     c.barrier();
     if (request.counting == Counting::raster) {
       record_raster_counting(c);
       frame.counting_used = "raster";
     } else if (request.counting == Counting::per_triangle) {
-      c.dispatch(pipelines_.count_triangles, &push, sizeof push, groups);
+      c.dispatch(pipelines_.counting_triangles, &push, sizeof push, groups);
       c.barrier();
       frame.counting_used = "per-triangle";
     } else {
       scan_.record(c, pipelines_, buffers_.footprint.address(), buffers_.cell_cdf.address(), scene_.triangle_count());
-      // One invocation per run of kCellsPerRun candidates (count_cells.comp).
-      c.dispatch(pipelines_.count_cells, &push, sizeof push,
+      // One invocation per run of kCellsPerRun candidates (counting_cells.comp).
+      c.dispatch(pipelines_.counting_cells, &push, sizeof push,
                  workgroups_for((scene_.candidate_cells() + gpu::kCellsPerRun - 1) / gpu::kCellsPerRun));
       c.barrier();
       frame.counting_used = "compute";
     }
-    c.dispatch(pipelines_.total, &push, sizeof push, groups);
+    c.dispatch(pipelines_.counting_total, &push, sizeof push, groups);
     c.barrier();
     c.timestamp("counting");
   }
@@ -180,8 +180,8 @@ class VulkanSampler final : public Sampler {
   const vk::RasterPipeline& raster_pipeline() {
     if (!raster_) {
       const bool conservative = context_->capabilities().conservative_rasterization;
-      vk::RasterStages stages{spirv::count_raster_vert, {}, spirv::count_raster_frag, conservative};
-      if (!conservative) stages.geometry = spirv::count_raster_geom;
+      vk::RasterStages stages{spirv::counting_raster_vert, {}, spirv::counting_raster_frag, conservative};
+      if (!conservative) stages.geometry = spirv::counting_raster_geom;
       raster_ = std::make_unique<vk::RasterPipeline>(context_->create_raster(stages, sizeof(gpu::RasterPush)));
     }
     return *raster_;
@@ -203,7 +203,7 @@ class VulkanSampler final : public Sampler {
   }
 
   void ensure_samples(std::uint64_t n) {
-    const VkDeviceSize bytes = std::max<std::uint64_t>(n, 1) * sizeof(gpu::GpuSample);
+    const VkDeviceSize bytes = std::max<std::uint64_t>(n, 1) * sizeof(gpu::Sample);
     if (!buffers_.samples || buffers_.samples.size() < bytes) {
       buffers_.samples = Buffer();  // free the old one first: samples can be most of the memory
       buffers_.samples = context_->create_buffer(bytes);
@@ -213,17 +213,17 @@ class VulkanSampler final : public Sampler {
   void generate_trs(const FrameRequest& request, Frame& frame) {
     const std::uint32_t n_tri = scene_.triangle_count();
     Commands c = context_->begin();
-    c.fill(buffers_.totals, 0, sizeof(gpu::GpuTotals), 0);
+    c.fill(buffers_.totals, 0, sizeof(gpu::FrameTotals), 0);
     c.barrier();
     record_counting(c, request, frame);
     const PhiloxKey rounding_key = stream_key(request.seed, Stream::rounding);
-    const gpu::RoundPush round{buffers_.expected.address(), buffers_.counts.address(), buffers_.totals.address(),
+    const gpu::RoundingPush round{buffers_.expected.address(), buffers_.counts.address(), buffers_.totals.address(),
                                request.target_count ? *request.target_count : -1.0, rounding_key[0],
                                rounding_key[1], n_tri, 0};
-    c.dispatch(pipelines_.round, &round, sizeof round, workgroups_for(n_tri));
+    c.dispatch(pipelines_.rounding, &round, sizeof round, workgroups_for(n_tri));
     c.barrier();
     c.timestamp("rounding");
-    const gpu::GpuTotals counted = submit(c, frame);
+    const gpu::FrameTotals counted = submit(c, frame);
     frame.expected_total = counted.expected_total;
     core::validate_expected_total(frame.expected_total);
     frame.sample_count = counted.sample_count;
@@ -244,11 +244,11 @@ class VulkanSampler final : public Sampler {
     d.timestamp("scan");
     if (request.realize && frame.sample_count > 0) {
       const PhiloxKey key = stream_key(request.seed, Stream::realization);
-      const gpu::RealizePush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
+      const gpu::RealizationPush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
                                   buffers_.max_density.address(), buffers_.cdf.address(), inverse.address(),
                                   buffers_.samples.address(), buffers_.totals.address(), 0, key[0], key[1],
                                   n_tri, device_max_tries(context_->device_name(), request.max_tries)};
-      dispatch_per_sample(d, pipelines_.realize, push, frame.sample_count);
+      dispatch_per_sample(d, pipelines_.realization, push, frame.sample_count);
       d.timestamp("realization");
     }
     finish(d, request, frame, {.counted = true, .inverse = &inverse});
@@ -257,18 +257,18 @@ class VulkanSampler final : public Sampler {
   void generate_rejection(const FrameRequest& request, Frame& frame) {
     const std::uint32_t n_tri = scene_.triangle_count();
     Commands c = context_->begin();
-    c.fill(buffers_.totals, 0, sizeof(gpu::GpuTotals), 0);
+    c.fill(buffers_.totals, 0, sizeof(gpu::FrameTotals), 0);
     c.barrier();
     if (!request.target_count) record_counting(c, request, frame);  // Algorithm 1 needs N
     for (std::size_t m = 0; m < scene_.host().maps().size(); ++m) {
       const std::uint32_t texels = std::uint32_t(scene_.host().maps()[m].texels.size());
       const gpu::RejectionPush push{0, scene_.map_records(), scene_.texels(), 0, 0, buffers_.totals.address(),
                                     0, 0, 0, 0, n_tri, 0, texels, std::uint32_t(m)};
-      c.dispatch(pipelines_.rejection_bound, &push, sizeof push, workgroups_for(texels));
+      c.dispatch(pipelines_.rejection_distribution, &push, sizeof push, workgroups_for(texels));
     }
     c.barrier();
     c.timestamp("distribution");
-    const gpu::GpuTotals bounded = submit(c, frame);
+    const gpu::FrameTotals bounded = submit(c, frame);
     double target;
     if (request.target_count) {
       target = *request.target_count;
@@ -303,7 +303,7 @@ class VulkanSampler final : public Sampler {
 
   /// Runs the last submission, then reads its totals and the outputs the request asks for.
   void finish(Commands& d, const FrameRequest& request, Frame& frame, Outputs outputs) {
-    const gpu::GpuTotals realized = submit(d, frame);
+    const gpu::FrameTotals realized = submit(d, frame);
     frame.candidates = realized.candidates;
     frame.exhausted = realized.exhausted;
     if (request.read_back) read_back(frame, outputs, request.realize);

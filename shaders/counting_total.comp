@@ -5,7 +5,7 @@
 #include "grid.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
-layout(push_constant) uniform Push { CountPush p; };
+layout(push_constant) uniform Push { CountingPush p; };
 
 void main() {
   float sum = 0.0;

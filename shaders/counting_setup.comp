@@ -7,19 +7,19 @@
 #include "grid.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
-layout(push_constant) uniform Push { CountPush p; };
+layout(push_constant) uniform Push { CountingPush p; };
 
 void main() {
   Triangles triangles = Triangles(p.triangles);
   Maps maps = Maps(p.maps);
   for (uint64_t i = thread_index(); i < uint64_t(p.triangle_count); i += thread_count()) {
     uint tri = uint(i);
-    GpuTriangle t = triangles.v[tri];
+    TexelTriangle t = triangles.v[tri];
     float expected = 0.0, bound = 0.0;
     uint64_t cells = 0ul;
     if (t.map != kNoMap && t.area > 0.0) {
-      GpuMap map = maps.v[t.map];
-      TexelTriangle tt = texel_triangle(t);
+      DensityMap map = maps.v[t.map];
+      TriangleCells tt = triangle_cells(t);
       if (uv_degenerate(t) || (tt.columns == 1ul && tt.rows == 1ul)) {
         // Constant density over the triangle: read where the realization pass reads.
         bound = uv_degenerate(t) ? point_density(map, p.texels, t.origin_x, t.origin_y)

@@ -9,10 +9,10 @@ layout(location = 0) in flat uint g_triangle;
 
 void main() {
   uint tri = g_triangle;
-  GpuTriangle t = Triangles(p.triangles).v[tri];
+  TexelTriangle t = Triangles(p.triangles).v[tri];
   int64_t ix = int64_t(p.origin_x) + int64_t(floor(gl_FragCoord.x));
   int64_t iy = int64_t(p.origin_y) + int64_t(floor(gl_FragCoord.y));
   float density;
-  float contribution = cell_contribution(t, texel_triangle(t), Maps(p.maps).v[t.map], p.texels, ix, iy, density);
+  float contribution = cell_contribution(t, triangle_cells(t), Maps(p.maps).v[t.map], p.texels, ix, iy, density);
   accumulate(p.expected, p.max_density, tri, contribution, density, !gl_HelperInvocation);
 }

@@ -7,15 +7,15 @@
 #include "grid.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
-layout(push_constant) uniform Push { CountPush p; };
+layout(push_constant) uniform Push { CountingPush p; };
 
 void main() {
   for (uint64_t i = thread_index(); i < uint64_t(p.triangle_count); i += thread_count()) {
     if (uint64_at(p.footprint, i).v[0] == 0ul) continue;  // settled by the setup pass
     uint tri = uint(i);
-    GpuTriangle t = Triangles(p.triangles).v[tri];
-    TexelTriangle tt = texel_triangle(t);
-    GpuMap map = Maps(p.maps).v[t.map];
+    TexelTriangle t = Triangles(p.triangles).v[tri];
+    TriangleCells tt = triangle_cells(t);
+    DensityMap map = Maps(p.maps).v[t.map];
     float sum = 0.0, bound = 0.0;
     // Rows, then columns: no single loop reaches lavapipe's 65535-iteration limit.
     for (uint64_t row = 0ul; row < tt.rows; ++row)

@@ -9,7 +9,7 @@
 #include "grid.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
-layout(push_constant) uniform Push { CountPush p; };
+layout(push_constant) uniform Push { CountingPush p; };
 
 uint64_t cell_cdf(uint tri) { return uint64_at(p.cell_cdf, tri).v[0]; }
 
@@ -37,9 +37,9 @@ void main() {
     uint64_t first = run * kCellsPerRun, last = min(first + kCellsPerRun, total);
     uint tri = owner(first);
     uint64_t begin = tri > 0u ? cell_cdf(tri - 1u) : 0ul, end = cell_cdf(tri);
-    GpuTriangle t = triangles.v[tri];
-    TexelTriangle tt = texel_triangle(t);
-    GpuMap map = maps.v[t.map];
+    TexelTriangle t = triangles.v[tri];
+    TriangleCells tt = triangle_cells(t);
+    DensityMap map = maps.v[t.map];
     // Column and row of the current cell: divided once per triangle, then stepped.
     uint64_t column = (first - begin) % tt.columns, row = (first - begin) / tt.columns;
     float sum = 0.0, bound = 0.0;
@@ -51,7 +51,7 @@ void main() {
         begin = cell_cdf(tri - 1u);
         end = cell_cdf(tri);
         t = triangles.v[tri];
-        tt = texel_triangle(t);
+        tt = triangle_cells(t);
         map = maps.v[t.map];
         column = (c - begin) % tt.columns;
         row = (c - begin) / tt.columns;

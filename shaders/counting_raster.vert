@@ -11,7 +11,7 @@ layout(location = 0) out flat uint v_triangle;
 
 void main() {
   uint tri = uint(gl_VertexIndex) / 3u, corner = uint(gl_VertexIndex) % 3u;
-  GpuTriangle t = Triangles(p.triangles).v[tri];
+  TexelTriangle t = Triangles(p.triangles).v[tri];
   vec2 position = vec2(t.origin_x, t.origin_y);
   if (corner == 1u) position += vec2(t.edge1_x, t.edge1_y);
   if (corner == 2u) position += vec2(t.edge2_x, t.edge2_y);

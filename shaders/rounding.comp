@@ -7,7 +7,7 @@
 #include "grid.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
-layout(push_constant) uniform Push { RoundPush p; };
+layout(push_constant) uniform Push { RoundingPush p; };
 
 void main() {
   Totals totals = Totals(p.totals);

@@ -8,7 +8,7 @@ layout(local_size_x = kWorkgroupSize) in;
 layout(push_constant) uniform Push { RejectionPush p; };
 
 void main() {
-  GpuMap map = Maps(p.maps).v[p.map];
+  DensityMap map = Maps(p.maps).v[p.map];
   float largest = 0.0;
   for (uint64_t i = thread_index(); i < uint64_t(p.texel_count); i += thread_count())
     largest = max(largest, Floats(p.texels).v[map.offset + uint(i)] * map.scale);

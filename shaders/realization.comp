@@ -6,7 +6,7 @@
 #include "common.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
-layout(push_constant) uniform Push { RealizePush p; };
+layout(push_constant) uniform Push { RealizationPush p; };
 
 uint processing_index(uint64_t sample_index) {
   uint lo = 0u, hi = p.triangle_count - 1u;
@@ -29,8 +29,8 @@ void main() {
     uint slot = processing_index(i);
     uint tri = Uints(p.inverse).v[slot];
     uint64_t rank = i - (slot > 0u ? uint64_at(p.cdf, slot - 1u).v[0] : 0ul);
-    GpuTriangle t = Triangles(p.triangles).v[tri];
-    GpuMap map = Maps(p.maps).v[t.map];
+    TexelTriangle t = Triangles(p.triangles).v[tri];
+    DensityMap map = Maps(p.maps).v[t.map];
     float bound = uintBitsToFloat(Uints(p.max_density).v[tri]);
     uvec2 key = uvec2(p.key0, p.key1);
     vec2 b = vec2(0.0);
@@ -45,7 +45,7 @@ void main() {
       ++attempt;
       accepted = uniform_float(u.z) * bound < point_density(map, p.texels, point.x, point.y);
     }
-    Samples(p.samples + i * 12ul).v[0] = GpuSample(tri, b.x, b.y);
+    Samples(p.samples + i * uint64_t(kSampleBytes)).v[0] = Sample(tri, b.x, b.y);
     tries = attempt;
     gave_up = accepted ? 0ul : 1ul;
   }
