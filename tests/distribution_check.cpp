@@ -24,6 +24,13 @@ std::vector<Scenario> scenarios() {
   };
 }
 
+std::size_t distribution_family_size() {
+  const std::size_t per_scenario = scenarios().size();
+  std::size_t size = 0;
+  for (const FamilyMember& m : kDistributionFamily) size += m.per_scenario ? per_scenario : 1;
+  return size;
+}
+
 /// Cells of one triangle: texel (x, y) -> expected weight D(texel) * Area(texel n T_uv).
 using Cells = std::map<std::pair<std::uint32_t, std::uint32_t>, double>;
 

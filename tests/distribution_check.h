@@ -18,12 +18,6 @@
 
 namespace trs_test {
 
-/// Significance of each test: family alpha 0.01 with the Sidak correction over the 22 tests that
-/// expect to pass: CPU TRS and rejection sampling, Vulkan TRS (raster and compute counting) and
-/// rejection sampling, and refined TRS on the CPU and on Vulkan, over 3 scenarios; and the
-/// correctly mapped half of the refinement's rejection test.
-inline const double kDistributionAlpha = sidak_alpha(0.01, 22);
-
 struct Scenario {
   const char* name;
   Mesh mesh;
@@ -35,6 +29,30 @@ struct Scenario {
 /// Random triangles over a sparse map with wrap and with clamp beyond [0, 1], and two large
 /// triangles over a fine sparse map.
 std::vector<Scenario> scenarios();
+
+/// The chi-square checks of the sample distribution that expect to pass, across the test
+/// executables: each runs once per scenario unless `per_scenario` is false. A check that uses
+/// kDistributionAlpha belongs here, so that the family's size follows the list.
+struct FamilyMember {
+  const char* check;
+  bool per_scenario;
+};
+inline constexpr FamilyMember kDistributionFamily[] = {
+    {"CPU TRS (distribution_test)", true},
+    {"CPU rejection sampling (distribution_test)", true},
+    {"CPU refined TRS (refinement_test)", true},
+    {"refinement: the correctly mapped samples (refinement_test)", false},
+    {"Vulkan TRS, compute counting (vulkan_sampler_test)", true},
+    {"Vulkan TRS, raster counting (vulkan_sampler_test)", true},
+    {"Vulkan rejection sampling (vulkan_sampler_test)", true},
+    {"Vulkan refined TRS (vulkan_sampler_test)", true},
+};
+
+/// How many tests the family holds: its members times the scenarios they run over.
+std::size_t distribution_family_size();
+
+/// Significance of each test: family alpha 0.01 with the Sidak correction over the family.
+inline const double kDistributionAlpha = sidak_alpha(0.01, distribution_family_size());
 
 /// The scenario's triangles in texel space, as the samplers build them.
 std::vector<lightsampler::core::TexelTriangle> texel_triangles(const Scenario& s);

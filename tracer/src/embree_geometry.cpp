@@ -4,6 +4,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -12,12 +13,19 @@
 namespace tracer {
 namespace {
 
-void throw_on_error(RTCDevice device, const char* what) {
-  const RTCError error = rtcGetDeviceError(device);
-  if (error != RTC_ERROR_NONE)
-    throw std::runtime_error(std::string("Embree: ") + what + " failed (error " +
-                             std::to_string(int(error)) + ")");
-}
+// What Embree reported through its error callback: the first error of the device, kept until
+// it is thrown. The callback may run on any thread and must not throw into Embree.
+struct ErrorLog {
+  std::mutex mutex;
+  std::string first;  ///< empty: no error so far
+
+  static void record(void* log, RTCError code, const char* message) {
+    auto& self = *static_cast<ErrorLog*>(log);
+    const std::lock_guard lock(self.mutex);
+    if (self.first.empty())
+      self.first = "error " + std::to_string(int(code)) + (message ? std::string(": ") + message : std::string());
+  }
+};
 
 RTCRay to_rtc(const Ray& ray, float max_distance) {
   RTCRay r{};
@@ -37,8 +45,17 @@ RTCRay to_rtc(const Ray& ray, float max_distance) {
 }  // namespace
 
 struct Geometry::Kernel {
+  ErrorLog errors;
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+
+  /// Throws std::runtime_error naming `what` and Embree's first error, if it reported one.
+  void throw_on_error(const char* what) {
+    const std::lock_guard lock(errors.mutex);
+    const RTCError pending = device ? rtcGetDeviceError(device) : RTC_ERROR_NONE;
+    if (errors.first.empty() && pending != RTC_ERROR_NONE) errors.first = "error " + std::to_string(int(pending));
+    if (!errors.first.empty()) throw std::runtime_error(std::string("Embree: ") + what + " failed (" + errors.first + ")");
+  }
 
   ~Kernel() {
     if (scene) rtcReleaseScene(scene);
@@ -48,14 +65,16 @@ struct Geometry::Kernel {
 
 Geometry::Geometry(const Mesh& mesh) : kernel_(std::make_unique<Kernel>()) {
   kernel_->device = rtcNewDevice(nullptr);
-  if (!kernel_->device) throw std::runtime_error("Embree: could not create a device");
+  if (!kernel_->device)
+    throw std::runtime_error("Embree: could not create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+  rtcSetDeviceErrorFunction(kernel_->device, &ErrorLog::record, &kernel_->errors);
   kernel_->scene = rtcNewScene(kernel_->device);
   rtcSetSceneBuildQuality(kernel_->scene, RTC_BUILD_QUALITY_HIGH);
   rtcSetSceneFlags(kernel_->scene, RTC_SCENE_FLAG_ROBUST);
 
   if (mesh.triangle_count() > 0) add_triangles(mesh);
   rtcCommitScene(kernel_->scene);
-  throw_on_error(kernel_->device, "building the scene");
+  kernel_->throw_on_error("building the scene");
 }
 
 void Geometry::add_triangles(const Mesh& mesh) {
@@ -68,7 +87,7 @@ void Geometry::add_triangles(const Mesh& mesh) {
   unsigned* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
       triangles, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
       mesh.triangle_count()));
-  throw_on_error(kernel_->device, "allocating the triangle buffers");
+  kernel_->throw_on_error("allocating the triangle buffers");
   std::copy_n(&mesh.positions[0].x, 3 * mesh.positions.size(), vertices);
   std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
   rtcCommitGeometry(triangles);
@@ -77,6 +96,8 @@ void Geometry::add_triangles(const Mesh& mesh) {
 }
 
 Geometry::~Geometry() = default;
+
+void Geometry::throw_if_failed() const { kernel_->throw_on_error("a ray query"); }
 
 std::optional<Hit> Geometry::intersect(const Ray& ray, float max_distance) const {
   RTCIntersectContext context;

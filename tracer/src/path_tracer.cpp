@@ -1,7 +1,9 @@
 #include "tracer/path_tracer.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "surface.h"
@@ -11,12 +13,21 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-/// A ray leaving `p` along `d`, its origin pushed off the surface to the side `d` goes, by an
-/// amount that grows with the coordinates (float spacing grows with them).
+/// A ray leaving `p` along `d`, its origin moved off the surface to the side `d` goes
+/// (Wächter and Binder, "A Fast and Robust Method for Avoiding Self-Intersection", Ray Tracing
+/// Gems, 2019): by a fixed number of float ulps along the geometric normal, which scales with
+/// the coordinates' own rounding error; near the origin, where ulps vanish, by a small fixed
+/// distance instead.
 glm::vec3 offset(const glm::vec3& p, const glm::vec3& geometric_normal, const glm::vec3& d) {
-  const float scale = std::max({1.0f, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-  const float side = glm::dot(d, geometric_normal) >= 0.0f ? 1.0f : -1.0f;
-  return p + (side * 1e-4f * scale) * geometric_normal;
+  constexpr float kNearOrigin = 1.0f / 32.0f, kFloatScale = 1.0f / 65536.0f, kIntScale = 256.0f;
+  const glm::vec3 n = glm::dot(d, geometric_normal) >= 0.0f ? geometric_normal : -geometric_normal;
+  glm::vec3 out;
+  for (int i = 0; i < 3; ++i) {
+    const auto ulps = std::int32_t(kIntScale * n[i]);
+    const std::int32_t bits = std::bit_cast<std::int32_t>(p[i]) + (p[i] < 0.0f ? -ulps : ulps);
+    out[i] = std::abs(p[i]) < kNearOrigin ? p[i] + kFloatScale * n[i] : std::bit_cast<float>(bits);
+  }
+  return out;
 }
 
 Ray spawn(const glm::vec3& p, const glm::vec3& geometric_normal, const glm::vec3& d) {

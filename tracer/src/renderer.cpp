@@ -150,6 +150,7 @@ RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& pro
           }
         });
     if (cancel) break;  // a partial frame would bias the average
+    s.geometry.throw_if_failed();
     sums.add(frame);
     result.light_frames.push_back(s.strategy->last_frame());
     result.frames = f + 1;

@@ -33,6 +33,9 @@ class Geometry {
   std::optional<Hit> intersect(const Ray& ray, float max_distance) const;
   /// Whether anything lies along the ray at distance in (0, max_distance).
   bool occluded(const Ray& ray, float max_distance) const;
+  /// Throws std::runtime_error with Embree's message if it reported an error during the queries
+  /// (its error callback records them; queries themselves cannot throw).
+  void throw_if_failed() const;
 
  private:
   struct Kernel;
