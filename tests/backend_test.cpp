@@ -21,7 +21,7 @@ std::unique_ptr<Sampler> make(const SamplerOptions& options) {
 
 TEST(Backend, CpuIsAlwaysThere) {
   auto sampler = make({.backend = Backend::cpu});
-  EXPECT_EQ(sampler->backend(), "cpu");
+  EXPECT_EQ(sampler->backend(), Backend::cpu);
   Frame frame;
   sampler->generate({.seed = 1, .target_count = 1000}, frame);
   EXPECT_EQ(frame.expected_total, 2.0);
@@ -29,7 +29,7 @@ TEST(Backend, CpuIsAlwaysThere) {
 
 TEST(Backend, WithoutVulkanAutomaticIsTheCpuAndVulkanIsRefused) {
   if (has_vulkan_backend()) GTEST_SKIP() << "this build has the Vulkan backend (the vulkan tests cover it)";
-  EXPECT_EQ(make({})->backend(), "cpu");
+  EXPECT_EQ(make({})->backend(), Backend::cpu);
   EXPECT_TRUE(vulkan_devices().empty());
   try {
     make({.backend = Backend::vulkan});

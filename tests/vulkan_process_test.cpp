@@ -133,7 +133,7 @@ TEST_F(VulkanTest, OneInstanceAndOneDeviceServeEveryContextAndSampler) {
     auto b = make_sampler(quad.view(), {&view, 1}, {.backend = Backend::vulkan});
     auto c = make_sampler(quad.view(), {&view, 1},
                           {.backend = Backend::automatic, .cpu = {}, .vulkan = {.device = context->device_name()}});
-    EXPECT_EQ(c->backend(), "vulkan");
+    EXPECT_EQ(c->backend(), Backend::vulkan);
     for (Sampler* s : {a.get(), b.get(), c.get()}) expect_working(*s, 1000, 1);
   }
   expect_one_instance_and_one_device();

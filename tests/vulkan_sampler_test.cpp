@@ -74,8 +74,8 @@ void expect_counts_agree(const Mesh& mesh, const std::vector<Map>& maps) {
   auto sampler = make_vulkan_sampler(mesh.view(), views(maps), {.validation = true});
   for (Counting path : {Counting::compute, Counting::raster, Counting::per_triangle}) {
     SCOPED_TRACE(to_string(path));
-    const Frame f = generate(*sampler, {.counting = path, .realize = false});
-    EXPECT_EQ(f.counting_used, to_string(path));
+    const Frame f = generate(*sampler, {.realize = false, .vulkan = {.counting = path}});
+    EXPECT_EQ(f.counting_used, path);
     ASSERT_EQ(f.expected_counts.size(), reference.expected_counts.size());
     for (std::size_t t = 0; t < f.expected_counts.size(); ++t) {
       const double want = reference.expected_counts[t];
@@ -155,7 +155,7 @@ TEST_F(VulkanSampler, SamplesFollowTheDensity) {
   for (const trs_test::Scenario& s : trs_test::scenarios()) {
     auto sampler = gpu(s.mesh, {s.map});
     for (Counting path : {Counting::compute, Counting::raster}) {
-      const Frame f = generate(*sampler, {.seed = s.seed, .target_count = s.target, .counting = path});
+      const Frame f = generate(*sampler, {.seed = s.seed, .target_count = s.target, .vulkan = {.counting = path}});
       EXPECT_EQ(f.exhausted, 0u) << s.name;
       const auto result = trs_test::test_per_triangle(s, f.samples.span());
       EXPECT_GT(result.dof, 100) << s.name;
@@ -221,7 +221,7 @@ TEST_F(VulkanSampler, WrapAndClampAgreeExactlyWithTheCpuFarBeyondTheUnitSquare) 
     for (Counting path : {Counting::compute, Counting::raster, Counting::per_triangle}) {
       SCOPED_TRACE(to_string(path));
       FrameRequest r = request;
-      r.counting = path;
+      r.vulkan.counting = path;
       const Frame f = generate(*sampler, r);
       ASSERT_EQ(f.max_density.size(), reference.max_density.size());
       // N-bar_T: the GPU counts on the float texel-space vertices the realization uses, the CPU on
@@ -259,9 +259,9 @@ TEST_F(VulkanSampler, RasterCountingRefusesTexelsBeyondFloatPrecision) {
   const Mesh mesh = trs_test::quad(1, 1, u, 0.0f, u + 0.5f, 0.5f);
   const std::vector<Map> maps = {distinct_map(8, 8, Addressing::wrap)};
   auto sampler = gpu(mesh, maps);
-  EXPECT_THROW(generate(*sampler, {.counting = Counting::raster, .realize = false}), std::invalid_argument);
+  EXPECT_THROW(generate(*sampler, {.realize = false, .vulkan = {.counting = Counting::raster}}), std::invalid_argument);
   const Frame reference = generate(*cpu(mesh, maps), {.realize = false});
-  const Frame f = generate(*sampler, {.counting = Counting::compute, .realize = false});
+  const Frame f = generate(*sampler, {.realize = false, .vulkan = {.counting = Counting::compute}});
   ASSERT_EQ(f.max_density.size(), reference.max_density.size());
   for (std::size_t t = 0; t < f.max_density.size(); ++t) EXPECT_EQ(f.max_density[t], reference.max_density[t]);
 }
@@ -354,13 +354,13 @@ TEST_F(VulkanSampler, UpdatedMapChangesTheNextFrame) {
 
 TEST_F(VulkanSampler, ReportsTheDeviceAndPerPassTimes) {
   auto sampler = gpu(trs_test::quad(1, 1, 0, 0, 1, 1), {Map{{1.0f, 2.0f}, 2, 1}});
-  EXPECT_EQ(sampler->backend(), "vulkan");
+  EXPECT_EQ(sampler->backend(), Backend::vulkan);
   EXPECT_FALSE(sampler->device().empty());
   const Frame f = generate(*sampler, {.target_count = 1000});
-  std::vector<std::string> names;
+  std::vector<Pass> passes;
   for (const PassTime& p : f.passes) {
-    names.push_back(p.name);
-    EXPECT_GE(p.ms, 0.0) << p.name;
+    passes.push_back(p.pass);
+    EXPECT_GE(p.ms, 0.0) << to_string(p.pass);
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"counting", "rounding", "scan", "realization", "readback"}));
+  EXPECT_EQ(passes, (std::vector<Pass>{Pass::counting, Pass::rounding, Pass::scan, Pass::realization, Pass::readback}));
 }

@@ -86,13 +86,4 @@ std::unique_ptr<Sampler> make_sampler(const MeshView& mesh, std::span<const Dens
                               });
 }
 
-const char* to_string(Backend backend) {
-  switch (backend) {
-    case Backend::automatic: return "auto";
-    case Backend::cpu: return "cpu";
-    case Backend::vulkan: return "vulkan";
-  }
-  return "?";
-}
-
 }  // namespace lightsampler

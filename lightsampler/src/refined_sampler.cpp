@@ -35,9 +35,8 @@ class RefinedSampler final : public Sampler {
                  const SamplerFactory& backend)
       : input_(mesh, maps), refined_(std::move(refined)), parts_(backend(refined_.view(), maps)) {}
 
-  std::string backend() const override { return parts_->backend(); }
+  Backend backend() const override { return parts_->backend(); }
   std::string device() const override { return parts_->device(); }
-  unsigned threads() const override { return parts_->threads(); }
   std::uint64_t triangle_count() const override { return input_.triangles().size(); }
   std::size_t map_count() const override { return input_.maps().size(); }
 
@@ -56,7 +55,7 @@ class RefinedSampler final : public Sampler {
   void generate(const FrameRequest& request, Frame& frame) override {
     parts_->generate(request, frame);
     const auto start = std::chrono::steady_clock::now();
-    if (request.realize && request.read_back) {
+    if (request.realize && request.vulkan.read_back) {
       std::span<Sample> samples = frame.samples.span();
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 1 << 14),
                         [&](const tbb::blocked_range<std::size_t>& r) {
@@ -70,7 +69,7 @@ class RefinedSampler final : public Sampler {
     fold_to_parents(frame.max_density, refined_, n, [](float a, float b) { return std::max(a, b); });
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    frame.passes.push_back({"refinement", ms});
+    frame.passes.push_back({Pass::refinement, ms});
     frame.total_ms += ms;
   }
 

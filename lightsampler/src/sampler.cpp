@@ -1,6 +1,8 @@
 #include "lightsampler/sampler.h"
 
+#include <algorithm>
 #include <cmath>
+#include <thread>
 
 namespace lightsampler {
 
@@ -61,8 +63,35 @@ const char* to_string(Counting counting) {
     case Counting::raster: return "raster";
     case Counting::compute: return "compute";
     case Counting::per_triangle: return "per-triangle";
+    case Counting::cpu: return "cpu";
   }
   return "?";
+}
+
+const char* to_string(Backend backend) {
+  switch (backend) {
+    case Backend::automatic: return "auto";
+    case Backend::cpu: return "cpu";
+    case Backend::vulkan: return "vulkan";
+  }
+  return "?";
+}
+
+const char* to_string(Pass pass) {
+  switch (pass) {
+    case Pass::counting: return "counting";
+    case Pass::rounding: return "rounding";
+    case Pass::scan: return "scan";
+    case Pass::realization: return "realization";
+    case Pass::distribution: return "distribution";
+    case Pass::readback: return "readback";
+    case Pass::refinement: return "refinement";
+  }
+  return "?";
+}
+
+unsigned worker_threads(const CpuOptions& options) {
+  return options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
 }
 
 }  // namespace lightsampler

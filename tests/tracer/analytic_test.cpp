@@ -140,7 +140,7 @@ TEST(RefinedLightSampler, TrsAndPowerConvergeToTheQuadrature) {
   lightsampler::Frame frame;
   bench.emitters->sampler().generate({.seed = 1, .target_count = 1000}, frame);
   ASSERT_TRUE(std::any_of(frame.passes.begin(), frame.passes.end(),
-                          [](const lightsampler::PassTime& p) { return p.name == "refinement"; }))
+                          [](const lightsampler::PassTime& p) { return p.pass == lightsampler::Pass::refinement; }))
       << "the emitter was not split";
   const glm::dvec3 expected = bench.expected();
   for (StrategyKind kind : {StrategyKind::power, StrategyKind::trs}) {

@@ -10,6 +10,7 @@ namespace {
 
 using lightsampler::FrameRequest;
 using lightsampler::Method;
+using lightsampler::Pass;
 using lightsampler::Sampler;
 using lightsampler::ScanOrder;
 
@@ -43,14 +44,14 @@ struct Samplers {
 FrameRequest request_for(const Variant& v) {
   FrameRequest request;
   request.method = v.method;
-  request.counting = v.counting;
-  request.read_back = false;  // the Vulkan backend's outputs stay on the device
+  request.vulkan.counting = v.counting;
+  request.vulkan.read_back = false;  // the Vulkan backend's outputs stay on the device
   return request;
 }
 
 CaseResult describe_case(const char* experiment, const Mesh& mesh, const DensityMap& map,
                          const Sampler& sampler, const FrameRequest& request, const std::string& engine,
-                         float refine) {
+                         const ExperimentSettings& settings) {
   CaseResult r;
   r.experiment = experiment;
   r.mesh = mesh.name;
@@ -60,11 +61,11 @@ CaseResult describe_case(const char* experiment, const Mesh& mesh, const Density
   r.method = lightsampler::to_string(request.method);
   r.scan = request.method == Method::trs ? lightsampler::to_string(request.scan) : "-";
   r.target = request.target_count.value_or(0);
-  r.backend = sampler.backend();
+  r.backend = lightsampler::to_string(sampler.backend());
   r.engine = engine;
   r.device = sampler.device();
-  r.threads = sampler.threads();
-  r.refine = refine;
+  r.threads = sampler.backend() == Backend::cpu ? lightsampler::worker_threads({settings.threads}) : 0;
+  r.refine = settings.refinement.min_acceptance;
   return r;
 }
 
@@ -84,7 +85,8 @@ struct SeriesTime {
   static double fixed_ms_of(const Measurement& m) {
     double fixed = 0;
     for (const auto& pass : m.pass_medians)
-      if (pass.name == "counting" || pass.name == "rounding" || pass.name == "distribution") fixed += pass.ms;
+      if (pass.pass == Pass::counting || pass.pass == Pass::rounding || pass.pass == Pass::distribution)
+        fixed += pass.ms;
     return std::min(fixed, m.total_ms);
   }
 
@@ -115,8 +117,7 @@ void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& set
           Sampler& sampler = samplers.of(variant);
           FrameRequest request = request_for(variant);
           request.target_count = target;
-          CaseResult result = describe_case("sampling", mesh, map, sampler, request, variant.engine(),
-                                            settings.refinement.min_acceptance);
+          CaseResult result = describe_case("sampling", mesh, map, sampler, request, variant.engine(), settings);
           const std::optional<double> estimate = series[k].estimate_ms(target);
           if (estimate && *estimate > settings.measure.budget_s * 1e3) {
             result.estimate_ms = *estimate;
@@ -146,9 +147,9 @@ void run_scan_experiment(const Inputs& inputs, const ExperimentSettings& setting
           request.target_count = settings.scan_target;
           request.scan = scan;
           request.realize = false;
-          request.read_back = false;
-          CaseResult result = describe_case("scan", mesh, map, *sampler, request, sampler->backend(),
-                                            settings.refinement.min_acceptance);
+          request.vulkan.read_back = false;
+          CaseResult result = describe_case("scan", mesh, map, *sampler, request,
+                                            lightsampler::to_string(sampler->backend()), settings);
           result.measured = measure(*sampler, frame, request, kFirstSeed, settings.measure);
           result.scan = result.measured->scan_used;
           recorder.add(std::move(result));

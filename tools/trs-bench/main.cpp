@@ -93,8 +93,9 @@ void print_backends(const ExperimentSettings& settings) {
          .cpu = {settings.threads},
          .vulkan = {.device = settings.vulkan_device},
          .refinement = {}});
-    std::cout << "backend " << sampler->backend() << " on " << sampler->device();
-    if (sampler->threads() > 0) std::cout << ", " << sampler->threads() << " threads";
+    std::cout << "backend " << lightsampler::to_string(sampler->backend()) << " on " << sampler->device();
+    if (sampler->backend() == lightsampler::Backend::cpu)
+      std::cout << ", " << lightsampler::worker_threads({settings.threads}) << " threads";
     std::cout << "\n";
   }
 }

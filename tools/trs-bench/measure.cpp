@@ -13,26 +13,26 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// Per-pass times of the timed frames, keyed by pass name in first-run order.
+/// Per-pass times of the timed frames, by pass in first-run order.
 class PassSeries {
  public:
   void add(const std::vector<lightsampler::PassTime>& passes) {
     for (const auto& pass : passes) {
       auto it = std::find_if(series_.begin(), series_.end(),
-                             [&](const auto& s) { return s.first == pass.name; });
-      if (it == series_.end()) it = series_.insert(series_.end(), {pass.name, {}});
+                             [&](const auto& s) { return s.first == pass.pass; });
+      if (it == series_.end()) it = series_.insert(series_.end(), {pass.pass, {}});
       it->second.push_back(pass.ms);
     }
   }
 
   std::vector<lightsampler::PassTime> medians() const {
     std::vector<lightsampler::PassTime> result;
-    for (const auto& [name, times] : series_) result.push_back({name, median(times)});
+    for (const auto& [pass, times] : series_) result.push_back({pass, median(times)});
     return result;
   }
 
  private:
-  std::vector<std::pair<std::string, std::vector<double>>> series_;
+  std::vector<std::pair<lightsampler::Pass, std::vector<double>>> series_;
 };
 
 }  // namespace

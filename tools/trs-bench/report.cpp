@@ -37,7 +37,7 @@ std::string format_ms(double ms) {
 
 std::optional<double> pass_ms(const Measurement& m, const std::string& name) {
   for (const auto& pass : m.pass_medians)
-    if (pass.name == name) return pass.ms;
+    if (lightsampler::to_string(pass.pass) == name) return pass.ms;
   return std::nullopt;
 }
 
@@ -97,8 +97,8 @@ std::vector<std::string> csv_pass_columns(const std::vector<CaseResult>& results
   for (const auto& r : results)
     if (r.measured)
       for (const auto& pass : r.measured->pass_medians)
-        if (std::find(names.begin(), names.end(), pass.name) == names.end())
-          names.push_back(pass.name);
+        if (std::find(names.begin(), names.end(), lightsampler::to_string(pass.pass)) == names.end())
+          names.push_back(lightsampler::to_string(pass.pass));
   return names;
 }
 

@@ -26,7 +26,7 @@ struct SamplerTimes {
 };
 
 void add_pass(std::vector<lightsampler::PassTime>& sums, const lightsampler::PassTime& pass) {
-  const auto same = [&](const lightsampler::PassTime& p) { return p.name == pass.name; };
+  const auto same = [&](const lightsampler::PassTime& p) { return p.pass == pass.pass; };
   if (auto it = std::find_if(sums.begin(), sums.end(), same); it != sums.end())
     it->ms += pass.ms;
   else
@@ -101,7 +101,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
   nlohmann::json ms = nlohmann::json::array();
   for (const tracer::LightFrame& f : result.light_frames) ms.push_back(f.sampler_ms);
   nlohmann::json passes = nlohmann::json::object();
-  for (const lightsampler::PassTime& p : sampler.passes) passes[p.name] = p.ms;
+  for (const lightsampler::PassTime& p : sampler.passes) passes[lightsampler::to_string(p.pass)] = p.ms;
   return {
       {"settings",
        {{"scene", options.scene.string()},
@@ -162,7 +162,7 @@ void print_summary(std::ostream& out, const RenderOptions& options,
       out << "    per pass:";
       for (std::size_t i = 0; i < sampler.passes.size(); ++i) {
         std::snprintf(line, sizeof line, "%s %s %.2f ms", i ? "," : "",
-                      sampler.passes[i].name.c_str(), sampler.passes[i].ms);
+                      lightsampler::to_string(sampler.passes[i].pass), sampler.passes[i].ms);
         out << line;
       }
       std::snprintf(line, sizeof line, "; %.3g of the candidates accepted\n", sampler.acceptance);

@@ -27,12 +27,17 @@ std::string format(const char* pattern, double value) {
   return text;
 }
 
+// Worker threads of the CPU backend; none for the Vulkan backend.
+unsigned threads(const RunReport& run) {
+  return run.sampler.backend() == lightsampler::Backend::cpu ? lightsampler::worker_threads({run.options.threads}) : 0;
+}
+
 }  // namespace
 
 nlohmann::ordered_json stats_json(const RunReport& run) {
   const lightsampler::Frame& frame = run.frame;
   nlohmann::ordered_json ms = nlohmann::ordered_json::object();
-  for (const lightsampler::PassTime& pass : frame.passes) ms[pass.name] = pass.ms;
+  for (const lightsampler::PassTime& pass : frame.passes) ms[lightsampler::to_string(pass.pass)] = pass.ms;
   ms["total"] = frame.total_ms;
   const auto rate = acceptance_rate(frame);
 
@@ -46,16 +51,16 @@ nlohmann::ordered_json stats_json(const RunReport& run) {
                  {"address", addressing_name(run.options.addressing)},
                  {"scale", run.options.density_scale}};
   json["method"] = method_name(frame.method);
-  json["backend"] = run.sampler.backend();
+  json["backend"] = lightsampler::to_string(run.sampler.backend());
   json["device"] = run.sampler.device();
-  json["threads"] = run.sampler.threads();
+  json["threads"] = threads(run);
   json["seed"] = run.options.seed;
   json["refine"] = run.options.refinement.min_acceptance;
   json["target_count"] = run.options.target_count
                              ? nlohmann::ordered_json(*run.options.target_count)
                              : nlohmann::ordered_json(nullptr);
   json["scan"] = lightsampler::to_string(frame.scan_used);
-  json["counting"] = frame.counting_used;
+  json["counting"] = frame.counting_used ? lightsampler::to_string(*frame.counting_used) : "";
   json["expected_total"] = std::isfinite(frame.expected_total)
                                ? nlohmann::ordered_json(frame.expected_total)
                                : nlohmann::ordered_json(nullptr);
@@ -76,11 +81,11 @@ void print_summary(std::ostream& out, const RunReport& run, std::optional<double
   out << "density map  " << run.map.file.string() << ": " << run.map.width << " x "
       << run.map.height << ", " << (run.map.srgb_decoded ? "sRGB" : "linear") << ", "
       << addressing_name(run.options.addressing) << ", scale " << run.options.density_scale << "\n";
-  out << "sampler      " << method_name(frame.method) << " on " << run.sampler.backend() << " ("
-      << run.sampler.device();
-  if (run.sampler.threads() > 0) out << ", " << run.sampler.threads() << " threads";
+  out << "sampler      " << method_name(frame.method) << " on " << lightsampler::to_string(run.sampler.backend())
+      << " (" << run.sampler.device();
+  if (threads(run) > 0) out << ", " << threads(run) << " threads";
   out << "), seed " << run.options.seed << ", scan " << lightsampler::to_string(frame.scan_used);
-  if (!frame.counting_used.empty()) out << ", counting " << frame.counting_used;
+  if (frame.counting_used) out << ", counting " << lightsampler::to_string(*frame.counting_used);
   out << "\n";
   out << "expected N̄   "
       << (std::isfinite(frame.expected_total) ? format("%.6g", frame.expected_total)
@@ -96,7 +101,7 @@ void print_summary(std::ostream& out, const RunReport& run, std::optional<double
   }
   out << "time         ";
   for (const lightsampler::PassTime& pass : frame.passes) {
-    out << pass.name << " " << format("%.3f", pass.ms) << " ms, ";
+    out << lightsampler::to_string(pass.pass) << " " << format("%.3f", pass.ms) << " ms, ";
   }
   out << "total " << format("%.3f", frame.total_ms) << " ms\n";
   if (frame.total_ms > 0) {

@@ -39,8 +39,6 @@ bool has_vulkan_backend();
 /// Vulkan itself is unavailable, or the library was built without it.
 std::vector<std::string> vulkan_devices();
 
-enum class Backend { automatic, cpu, vulkan };
-
 struct SamplerOptions {
   Backend backend = Backend::automatic;
   CpuOptions cpu;
@@ -55,7 +53,5 @@ struct SamplerOptions {
 /// refined mesh (make_refined_sampler).
 std::unique_ptr<Sampler> make_sampler(const MeshView& mesh, std::span<const DensityMapView> maps,
                                       const SamplerOptions& options = {});
-
-const char* to_string(Backend backend);
 
 }  // namespace lightsampler

@@ -88,7 +88,7 @@ using SamplerFactory =
 /// texel(), and the Frame's per-triangle expected_counts, counts and max_density refer to the
 /// caller's triangles; cdf and inverse_permutation to the parts, which are what is processed.
 /// Samples are brought back to the caller's triangles on the host, so the Vulkan backend must
-/// read them back (FrameRequest::read_back).
+/// read them back (FrameRequest::vulkan.read_back).
 std::unique_ptr<Sampler> make_refined_sampler(const MeshView& mesh,
                                               std::span<const DensityMapView> maps,
                                               const Refinement& refinement,

@@ -25,13 +25,24 @@ enum class Method { trs, rejection };
 /// unordered on the GPU unless the triangle count and the total do not fit one 64-bit word.
 enum class ScanOrder { automatic, unordered, ordered };
 
+/// The backend that runs a sampler; `automatic` is a request only (backend.h).
+enum class Backend { automatic, cpu, vulkan };
+
 /// How the Vulkan backend enumerates (triangle, texel) pairs in the counting pass: `raster`
 /// rasterizes the mesh in UV space (the paper's method, conservative or dilated); `compute` runs
 /// one thread per candidate cell after a prefix sum over the triangles' footprints, for GPUs
 /// whose graphics units are a small part of the chip; `per_triangle` is the paper's naive
-/// one-thread-per-triangle ablation, kept as the baseline `compute` is measured against. The
-/// CPU backend has one path of its own.
-enum class Counting { automatic, raster, compute, per_triangle };
+/// one-thread-per-triangle ablation, kept as the baseline `compute` is measured against. `cpu`
+/// is the CPU backend's own path: reported in Frame::counting_used, never requested.
+enum class Counting { automatic, raster, compute, per_triangle, cpu };
+
+/// What a frame asks of the Vulkan backend only; the CPU backend ignores it.
+struct VulkanFrameOptions {
+  Counting counting = Counting::automatic;
+  /// Copy the outputs into the Frame. False keeps them on the device (timing the sampler alone,
+  /// or a consumer that reads the device buffers); the Frame's totals and times are still filled.
+  bool read_back = true;
+};
 
 struct FrameRequest {
   std::uint64_t seed = 0;
@@ -39,20 +50,21 @@ struct FrameRequest {
   std::optional<double> target_count;
   Method method = Method::trs;
   ScanOrder scan = ScanOrder::automatic;
-  Counting counting = Counting::automatic;
   /// False: stop after the counts and the CDF (no samples), e.g. to size buffers.
   bool realize = true;
-  /// Vulkan backend: copy the outputs into the Frame. False keeps them on the device (timing
-  /// the sampler alone, or a consumer that reads the device buffers); the Frame's totals and
-  /// times are still filled.
-  bool read_back = true;
+  VulkanFrameOptions vulkan;
   /// Candidates tried per sample before giving up. A sample that gives up keeps its last
   /// candidate and is counted in Frame::exhausted; a non-zero count means a biased frame.
   std::uint32_t max_tries = 1u << 28;
 };
 
+/// The passes a frame times. `distribution` is plain rejection sampling's set-up (area CDF and
+/// bound), `readback` the Vulkan backend's copy to the host, `refinement` the adaptive
+/// subdivision's mapping of samples back to the caller's triangles.
+enum class Pass { counting, rounding, scan, realization, distribution, readback, refinement };
+
 struct PassTime {
-  std::string name;  ///< "counting", "rounding", "scan", "realization", "distribution"
+  Pass pass;
   double ms;
 };
 
@@ -71,7 +83,7 @@ struct Frame {
   std::uint64_t exhausted = 0;      ///< samples that reached max_tries
   Method method = Method::trs;
   ScanOrder scan_used = ScanOrder::ordered;
-  std::string counting_used;        ///< "cpu", "raster", "compute" or "per-triangle"; empty when not counted
+  std::optional<Counting> counting_used;  ///< the counting path that ran; none when not counted
   std::vector<PassTime> passes;     ///< time per pass, in order
   double total_ms = 0;
 };
@@ -82,9 +94,8 @@ class Sampler {
  public:
   virtual ~Sampler() = default;
 
-  virtual std::string backend() const = 0;   ///< "cpu", "vulkan"
+  virtual Backend backend() const = 0;       ///< cpu or vulkan
   virtual std::string device() const = 0;    ///< the processor or GPU that runs it
-  virtual unsigned threads() const = 0;      ///< worker threads (CPU backend)
 
   virtual std::uint64_t triangle_count() const = 0;
   virtual std::size_t map_count() const = 0;
@@ -110,6 +121,9 @@ struct CpuOptions {
   unsigned threads = 0;  ///< worker threads; 0: every hardware thread
 };
 
+/// The worker threads a CPU sampler made with `options` runs.
+unsigned worker_threads(const CpuOptions& options);
+
 /// The native multi-threaded backend. Throws std::invalid_argument (bad mesh or map, with what
 /// and where) or std::length_error (2^32 triangles or more).
 std::unique_ptr<Sampler> make_cpu_sampler(const MeshView& mesh,
@@ -119,5 +133,7 @@ std::unique_ptr<Sampler> make_cpu_sampler(const MeshView& mesh,
 const char* to_string(Method method);
 const char* to_string(ScanOrder scan);
 const char* to_string(Counting counting);
+const char* to_string(Backend backend);
+const char* to_string(Pass pass);
 
 }  // namespace lightsampler

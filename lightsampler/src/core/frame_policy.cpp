@@ -16,7 +16,7 @@ void begin_frame(const FrameRequest& request, Frame& frame) {
   frame.method = request.method;
   frame.candidates = frame.exhausted = 0;
   frame.expected_total = std::numeric_limits<double>::quiet_NaN();
-  frame.counting_used.clear();
+  frame.counting_used.reset();
 }
 
 bool unordered_scan_fits(std::uint64_t elements, std::uint64_t total) {

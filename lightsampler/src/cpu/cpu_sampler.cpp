@@ -48,14 +48,12 @@ class Stopwatch {
 class CpuSampler final : public Sampler {
  public:
   CpuSampler(const MeshView& mesh, std::span<const DensityMapView> maps, const CpuOptions& options)
-      : threads_(options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency())),
-        arena_(int(threads_)),
+      : arena_(int(worker_threads(options))),
         device_(cpu_model()),
         scene_(arena_.execute([&] { return core::HostScene(mesh, maps); })) {}
 
-  std::string backend() const override { return "cpu"; }
+  Backend backend() const override { return Backend::cpu; }
   std::string device() const override { return device_; }
-  unsigned threads() const override { return threads_; }
   std::uint64_t triangle_count() const override { return scene_.triangles().size(); }
   std::size_t map_count() const override { return scene_.maps().size(); }
 
@@ -89,8 +87,8 @@ class CpuSampler final : public Sampler {
                                     frame.max_density);
     core::validate_expected_total(total);
     frame.expected_total = total;
-    frame.counting_used = "cpu";
-    frame.passes.push_back({"counting", pass.lap_ms()});
+    frame.counting_used = Counting::cpu;
+    frame.passes.push_back({Pass::counting, pass.lap_ms()});
   }
 
   void generate_trs(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
@@ -100,7 +98,7 @@ class CpuSampler final : public Sampler {
     const double scale = request.target_count ? (expected > 0 ? *request.target_count / expected : 0) : 1;
     frame.sample_count = cpu::round_counts(frame.expected_counts.span(), scale,
                                            stream_key(request.seed, Stream::rounding), frame.counts);
-    frame.passes.push_back({"rounding", pass.lap_ms()});
+    frame.passes.push_back({Pass::rounding, pass.lap_ms()});
 
     // Automatic: ordered, which is faster on the CPU than contending for one atomic.
     frame.scan_used = core::choose_scan(request.scan, ScanOrder::ordered, frame.counts.size(), frame.sample_count);
@@ -108,7 +106,7 @@ class CpuSampler final : public Sampler {
       cpu::unordered_scan(frame.counts.span(), kScanBlock, frame.cdf, frame.inverse_permutation);
     else
       cpu::ordered_scan(frame.counts.span(), frame.cdf, frame.inverse_permutation);
-    frame.passes.push_back({"scan", pass.lap_ms()});
+    frame.passes.push_back({Pass::scan, pass.lap_ms()});
 
     if (!request.realize) {
       frame.samples.resize(0);
@@ -120,7 +118,7 @@ class CpuSampler final : public Sampler {
         request.max_tries, frame.samples);
     frame.candidates = r.candidates;
     frame.exhausted = r.exhausted;
-    frame.passes.push_back({"realization", pass.lap_ms()});
+    frame.passes.push_back({Pass::realization, pass.lap_ms()});
   }
 
   void generate_rejection(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
@@ -136,7 +134,7 @@ class CpuSampler final : public Sampler {
       target = frame.expected_total;
     }
     const float bound = cpu::rejection_distribution(scene_.triangles(), scene_.maps(), area_cdf_);
-    frame.passes.push_back({"distribution", pass.lap_ms()});
+    frame.passes.push_back({Pass::distribution, pass.lap_ms()});
 
     const double total_area = area_cdf_.empty() ? 0.0 : area_cdf_[area_cdf_.size() - 1];
     frame.sample_count = core::rejection_sample_count(target, bound, total_area, request.seed);
@@ -150,10 +148,9 @@ class CpuSampler final : public Sampler {
         stream_key(request.seed, Stream::rejection), request.max_tries, frame.samples);
     frame.candidates = r.candidates;
     frame.exhausted = r.exhausted;
-    frame.passes.push_back({"realization", pass.lap_ms()});
+    frame.passes.push_back({Pass::realization, pass.lap_ms()});
   }
 
-  unsigned threads_;
   tbb::task_arena arena_;
   std::string device_;
   core::HostScene scene_;

@@ -24,6 +24,13 @@ namespace {
 
 using vk::Buffer;
 using vk::Commands;
+
+/// The pass a GPU timestamp was named after (stamps are named by to_string(Pass)).
+Pass pass_named(const std::string& name) {
+  for (Pass p : {Pass::counting, Pass::rounding, Pass::scan, Pass::realization, Pass::distribution})
+    if (name == to_string(p)) return p;
+  throw std::logic_error("a GPU timestamp named \"" + name + "\" that is no pass");
+}
 using vk::workgroups_for;
 
 // Viewport tile of the raster counting path, in texels (within every device's limits).
@@ -69,9 +76,8 @@ class VulkanSampler final : public Sampler {
     buffers_.totals_readback = context_->create_buffer(sizeof(gpu::FrameTotals), /*host_visible=*/true);
   }
 
-  std::string backend() const override { return "vulkan"; }
+  Backend backend() const override { return Backend::vulkan; }
   std::string device() const override { return context_->device_name(); }
-  unsigned threads() const override { return 0; }
   std::uint64_t triangle_count() const override { return scene_.triangle_count(); }
   std::size_t map_count() const override { return scene_.host().maps().size(); }
 
@@ -106,7 +112,7 @@ class VulkanSampler final : public Sampler {
   }
 
   void add_passes(Frame& frame, const std::vector<std::pair<std::string, double>>& times) {
-    for (const auto& [name, ms] : times) frame.passes.push_back({name, ms});
+    for (const auto& [name, ms] : times) frame.passes.push_back({pass_named(name), ms});
   }
 
   gpu::CountingPush count_push() const {
@@ -121,24 +127,26 @@ class VulkanSampler final : public Sampler {
     const std::uint32_t groups = workgroups_for(scene_.triangle_count());
     c.dispatch(pipelines_.counting_setup, &push, sizeof push, groups);
     c.barrier();
-    if (request.counting == Counting::raster) {
+    if (request.vulkan.counting == Counting::cpu)
+      throw std::invalid_argument("the Vulkan backend has no CPU counting path; ask for raster, compute or per-triangle");
+    if (request.vulkan.counting == Counting::raster) {
       record_raster_counting(c);
-      frame.counting_used = "raster";
-    } else if (request.counting == Counting::per_triangle) {
+      frame.counting_used = Counting::raster;
+    } else if (request.vulkan.counting == Counting::per_triangle) {
       c.dispatch(pipelines_.counting_triangles, &push, sizeof push, groups);
       c.barrier();
-      frame.counting_used = "per-triangle";
+      frame.counting_used = Counting::per_triangle;
     } else {
       scan_.record(c, pipelines_, buffers_.footprint.address(), buffers_.cell_cdf.address(), scene_.triangle_count());
       // One invocation per run of kCellsPerRun candidates (counting_cells.comp).
       c.dispatch(pipelines_.counting_cells, &push, sizeof push,
                  workgroups_for((scene_.candidate_cells() + gpu::kCellsPerRun - 1) / gpu::kCellsPerRun));
       c.barrier();
-      frame.counting_used = "compute";
+      frame.counting_used = Counting::compute;
     }
     c.dispatch(pipelines_.counting_total, &push, sizeof push, groups);
     c.barrier();
-    c.timestamp("counting");
+    c.timestamp(to_string(Pass::counting));
   }
 
   /// The paper's counting: every map's triangles rasterized in its texel space, one draw per
@@ -222,7 +230,7 @@ class VulkanSampler final : public Sampler {
                                rounding_key[1], n_tri, 0};
     c.dispatch(pipelines_.rounding, &round, sizeof round, workgroups_for(n_tri));
     c.barrier();
-    c.timestamp("rounding");
+    c.timestamp(to_string(Pass::rounding));
     const gpu::FrameTotals counted = submit(c, frame);
     frame.expected_total = counted.expected_total;
     core::validate_expected_total(frame.expected_total);
@@ -241,7 +249,7 @@ class VulkanSampler final : public Sampler {
     } else {
       scan_.record(d, pipelines_, buffers_.counts.address(), buffers_.cdf.address(), n_tri);
     }
-    d.timestamp("scan");
+    d.timestamp(to_string(Pass::scan));
     if (request.realize && frame.sample_count > 0) {
       const PhiloxKey key = stream_key(request.seed, Stream::realization);
       const gpu::RealizationPush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
@@ -249,7 +257,7 @@ class VulkanSampler final : public Sampler {
                                   buffers_.samples.address(), buffers_.totals.address(), 0, key[0], key[1],
                                   n_tri, device_max_tries(context_->device_name(), request.max_tries)};
       dispatch_per_sample(d, pipelines_.realization, push, frame.sample_count);
-      d.timestamp("realization");
+      d.timestamp(to_string(Pass::realization));
     }
     finish(d, request, frame, {.counted = true, .inverse = &inverse});
   }
@@ -267,7 +275,7 @@ class VulkanSampler final : public Sampler {
       c.dispatch(pipelines_.rejection_distribution, &push, sizeof push, workgroups_for(texels));
     }
     c.barrier();
-    c.timestamp("distribution");
+    c.timestamp(to_string(Pass::distribution));
     const gpu::FrameTotals bounded = submit(c, frame);
     double target;
     if (request.target_count) {
@@ -290,7 +298,7 @@ class VulkanSampler final : public Sampler {
                                     0, key[0], key[1], n_tri,
                                     device_max_tries(context_->device_name(), request.max_tries), 0, 0};
       dispatch_per_sample(d, pipelines_.rejection, push, frame.sample_count);
-      d.timestamp("realization");
+      d.timestamp(to_string(Pass::realization));
     }
     finish(d, request, frame, {.counted = !request.target_count});
   }
@@ -306,7 +314,7 @@ class VulkanSampler final : public Sampler {
     const gpu::FrameTotals realized = submit(d, frame);
     frame.candidates = realized.candidates;
     frame.exhausted = realized.exhausted;
-    if (request.read_back) read_back(frame, outputs, request.realize);
+    if (request.vulkan.read_back) read_back(frame, outputs, request.realize);
   }
 
   /// Copies the frame's device outputs into `frame` (what was not computed is left empty, as by
@@ -333,7 +341,7 @@ class VulkanSampler final : public Sampler {
     if (with_samples && frame.sample_count > 0)
       context_->download(buffers_.samples, 0, frame.samples.data(), frame.sample_count * sizeof(Sample));
     frame.passes.push_back(
-        {"readback", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
+        {Pass::readback, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
   }
 
   std::unique_ptr<vk::Context> context_;

@@ -62,7 +62,7 @@ class TrsStrategy : public LightStrategy {
   LightFrame last_frame() const override {
     return {frame_.total_ms, frame_.sample_count, frame_.candidates, frame_.exhausted, frame_.passes};
   }
-  std::string device() const override { return sampler_.backend() + ": " + sampler_.device(); }
+  std::string device() const override { return std::string(lightsampler::to_string(sampler_.backend())) + ": " + sampler_.device(); }
 
  private:
   const Emitters& emitters_;
