@@ -1,5 +1,5 @@
 // Shared by every pass: extensions, buffer types reached by device address, and the GPU twins
-// of the CPU backend's texel lookup (cpu/density.h) and sampling helpers.
+// of the core's texel lookup (core/density.h, core/geometry.h) and sampling helpers.
 //
 // Rules every shader keeps (GLSL 4.60, SPIR-V 1.5, Vulkan 1.2): what one driver forgives,
 // another does not.
@@ -48,7 +48,7 @@ layout(buffer_reference, std430, buffer_reference_align = 8) buffer Totals { Fra
 // Element i of a uint64 array beyond 2^32 elements: index by address arithmetic.
 Uint64s uint64_at(uint64_t base, uint64_t i) { return Uint64s(base + i * 8ul); }
 
-// ---- texel lookup (cpu/density.h: address, cell_density, floor_to_int, point_density) ----
+// ---- texel lookup (core/density.h: address, cell_density, floor_to_int, point_density) ----
 
 // Cell i of any sign, wrapped or clamped into [0, n). Wrap reduces |i| in unsigned arithmetic:
 // for i < 0, the cell -1 - k (k >= 0) wraps to n - 1 - (k mod n).
@@ -90,6 +90,11 @@ uvec4 philox4x32(uvec4 c, uvec2 k) {
 }
 
 float uniform_float(uint bits) { return float(bits >> 8) * (1.0 / 16777216.0); }
+double uniform_double(uint bits) { return double(bits) * (1.0lf / 4294967296.0lf); }
+// Uniform double in [0, 1) with 53 random bits (core/frame_policy.h).
+double uniform53(uvec4 r) {
+  return double(((uint64_t(r.x) << 32) | uint64_t(r.y)) >> 11) * (1.0lf / 9007199254740992.0lf);
+}
 
 // ---- Heitz's low-distortion map (lightsampler/triangle_map.h) ----
 
@@ -107,16 +112,16 @@ vec2 triangle_map(float u0, float u1) {
 
 // The texel-space point at barycentrics (b1, b2). precise: no fused multiply-add, so the texel
 // it falls in is the one the CPU backend reads, bit for bit.
-vec2 texel_point(TexelTriangle t, vec2 b) {
+vec2 texel_space_point(TexelTriangle t, vec2 b) {
   precise float x = t.origin_x + b.x * t.edge1_x + b.y * t.edge2_x;
   precise float y = t.origin_y + b.x * t.edge1_y + b.y * t.edge2_y;
   return vec2(x, y);
 }
 
 // Density at barycentrics (b1, b2) of a triangle, as the realization pass reads it.
-float triangle_density(TexelTriangle t, Maps maps, uint64_t texels, vec2 b) {
+float texel_triangle_density(TexelTriangle t, Maps maps, uint64_t texels, vec2 b) {
   if (t.map == kNoMap) return 0.0;
-  vec2 p = texel_point(t, b);
+  vec2 p = texel_space_point(t, b);
   return point_density(maps.v[t.map], texels, p.x, p.y);
 }
 

@@ -41,7 +41,7 @@ void main() {
     while (!accepted && attempt < p.max_tries) {
       uvec4 u = philox4x32(uvec4(tri, uint(rank), uint(rank >> 32), attempt), key);
       b = triangle_map(uniform_float(u.x), uniform_float(u.y));
-      vec2 point = texel_point(t, b);
+      vec2 point = texel_space_point(t, b);
       ++attempt;
       accepted = uniform_float(u.z) * bound < point_density(map, p.texels, point.x, point.y);
     }

@@ -34,10 +34,10 @@ void main() {
     uint attempt = 0u;
     while (!accepted && attempt < p.max_tries) {
       uvec4 u = philox4x32(uvec4(uint(i), uint(i >> 32), attempt, 0u), key);
-      tri = pick_triangle(double(u.x) * (1.0 / 4294967296.0) * total_area);
+      tri = pick_triangle(uniform_double(u.x) * total_area);
       b = triangle_map(uniform_float(u.y), uniform_float(u.z));
       ++attempt;
-      accepted = uniform_float(u.w) * bound < triangle_density(triangles.v[tri], maps, p.texels, b);
+      accepted = uniform_float(u.w) * bound < texel_triangle_density(triangles.v[tri], maps, p.texels, b);
     }
     Samples(p.samples + i * uint64_t(kSampleBytes)).v[0] = Sample(tri, b.x, b.y);
     tries = attempt;

@@ -21,7 +21,7 @@ void main() {
     double x = min(scale * double(Floats(p.expected).v[uint(i)]), 9223372036854775808.0lf);
     double whole = floor(x);
     uvec4 r = philox4x32(uvec4(uint(i), 0u, 0u, 0u), key);
-    double u = double(((uint64_t(r.x) << 32) | uint64_t(r.y)) >> 11) * (1.0 / 9007199254740992.0);
+    double u = uniform53(r);
     uint64_t count = uint64_t(whole) + (u < x - whole ? 1ul : 0ul);
     uint64_at(p.counts, i).v[0] = count;
     sum += count;
