@@ -85,4 +85,18 @@ float cell_contribution(TexelTriangle t, TriangleCells tt, DensityMap map, uint6
   return float(double(density) * overlap * double(t.area / tt.uv_area));
 }
 
+// A triangle's integral and bound over every cell of its bounding box, by one invocation: rows,
+// then columns, so that no single loop reaches lavapipe's 65535-iteration limit.
+void count_cells_of(TexelTriangle t, TriangleCells tt, DensityMap map, uint64_t texels, out float sum,
+                    out float bound) {
+  sum = 0.0;
+  bound = 0.0;
+  for (uint64_t row = 0ul; row < tt.rows; ++row)
+    for (uint64_t column = 0ul; column < tt.columns; ++column) {
+      float density;
+      sum += cell_contribution(t, tt, map, texels, tt.first_x + int64_t(column), tt.first_y + int64_t(row), density);
+      bound = max(bound, density);
+    }
+}
+
 #endif

@@ -1,8 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Counting, first pass: clears the per-triangle results and settles the triangles that need no
-// cell enumeration (no map, no world area, UV-degenerate, or inside one lattice cell); the
-// others get their bounding-box cell count, the footprint the cell pass enumerates.
+// cell enumeration (no map, no world area, UV-degenerate, or inside one lattice cell). With
+// automatic counting it also counts the triangles of at most p.small_cells cells, one invocation
+// each (the per-triangle path, at its best on small triangles). The others get their
+// bounding-box cell count, the footprint a later pass enumerates.
 #include "counting.glsl"
 #include "grid.glsl"
 
@@ -27,6 +29,10 @@ void main() {
         expected = bound * t.area;
       } else {
         cells = tt.columns * tt.rows;
+        if (cells <= uint64_t(p.small_cells)) {  // automatic: a few cells, counted here at once
+          count_cells_of(t, tt, map, p.texels, expected, bound);
+          cells = 0ul;
+        }
       }
     }
     Floats(p.expected).v[tri] = expected;

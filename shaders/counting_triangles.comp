@@ -16,15 +16,8 @@ void main() {
     TexelTriangle t = Triangles(p.triangles).v[tri];
     TriangleCells tt = triangle_cells(t);
     DensityMap map = Maps(p.maps).v[t.map];
-    float sum = 0.0, bound = 0.0;
-    // Rows, then columns: no single loop reaches lavapipe's 65535-iteration limit.
-    for (uint64_t row = 0ul; row < tt.rows; ++row)
-      for (uint64_t column = 0ul; column < tt.columns; ++column) {
-        float density;
-        sum += cell_contribution(t, tt, map, p.texels, tt.first_x + int64_t(column), tt.first_y + int64_t(row),
-                                 density);
-        bound = max(bound, density);
-      }
+    float sum, bound;
+    count_cells_of(t, tt, map, p.texels, sum, bound);
     Floats(p.expected).v[tri] = sum;
     Uints(p.max_density).v[tri] = floatBitsToUint(bound);
   }

@@ -73,7 +73,7 @@ struct CountingPush {
   uint64_t cell_cdf;     // uint64[T], inclusive prefix sum of the footprints
   uint64_t totals;       // FrameTotals
   uint triangle_count;
-  uint pad0;
+  uint small_cells;      // setup pass: count triangles of at most this many cells itself (0: none)
 };
 
 struct RasterPush {

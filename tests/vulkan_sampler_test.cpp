@@ -3,6 +3,7 @@
 // device into a failure instead of a skip.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <random>
 #include <string>
@@ -63,34 +64,10 @@ class VulkanSampler : public ::testing::Test {
   std::size_t validation_messages_ = 0;
 };
 
-/// N-bar_T and D_T^max from every counting path against the CPU backend. The GPU sums float
-/// contributions with float atomics: tolerance relative 1e-4 of the triangle's count (or of
-/// the largest count, for counts near zero). D_T^max is the largest texel read over the
-/// triangle's cells of positive overlap: the same texels on both backends, so equal.
-void expect_counts_agree(const Mesh& mesh, const std::vector<Map>& maps) {
-  const Frame reference = generate(*make_cpu_sampler(mesh.view(), views(maps)), {.realize = false});
-  double largest = 0;
-  for (double e : reference.expected_counts) largest = std::max(largest, e);
-  auto sampler = make_vulkan_sampler(mesh.view(), views(maps), {.validation = true});
-  for (Counting path : {Counting::compute, Counting::raster, Counting::per_triangle}) {
-    SCOPED_TRACE(to_string(path));
-    const Frame f = generate(*sampler, {.realize = false, .vulkan = {.counting = path}});
-    EXPECT_EQ(f.counting_used, path);
-    ASSERT_EQ(f.expected_counts.size(), reference.expected_counts.size());
-    for (std::size_t t = 0; t < f.expected_counts.size(); ++t) {
-      const double want = reference.expected_counts[t];
-      EXPECT_NEAR(f.expected_counts[t], want, 1e-4 * std::max(want, 1e-3 * largest)) << "triangle " << t;
-      EXPECT_EQ(f.max_density[t], reference.max_density[t]) << "triangle " << t;
-    }
-    EXPECT_NEAR(f.expected_total, reference.expected_total, 1e-4 * reference.expected_total);
-  }
-}
-
-/// Triangles a few texels across, scattered with UVs over [-5, 5]^2: most lattice cells they
-/// touch have negative indices far from zero, on maps of odd sizes.
-Mesh scattered_triangles(int count, std::uint64_t seed) {
+/// Small triangles: corners within `spread` of centers uniform in [lo, hi]^2 (UV units).
+Mesh scattered_triangles(int count, float lo, float hi, float spread, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<float> center(-4.8f, 4.8f), corner(-0.2f, 0.2f), pos(-1.0f, 1.0f);
+  std::uniform_real_distribution<float> center(lo, hi), corner(-spread, spread), pos(-1.0f, 1.0f);
   Mesh m;
   for (int t = 0; t < count; ++t) {
     const float u = center(rng), v = center(rng);
@@ -103,6 +80,30 @@ Mesh scattered_triangles(int count, std::uint64_t seed) {
     m.add_triangle(p, uv);
   }
   return m;
+}
+
+/// N-bar_T and D_T^max from every counting path against the CPU backend (automatic mixes the
+/// per-triangle and compute paths by triangle size: the meshes below have small and large ones). The GPU sums float
+/// contributions with float atomics: tolerance relative 1e-4 of the triangle's count (or of
+/// the largest count, for counts near zero). D_T^max is the largest texel read over the
+/// triangle's cells of positive overlap: the same texels on both backends, so equal.
+void expect_counts_agree(const Mesh& mesh, const std::vector<Map>& maps) {
+  const Frame reference = generate(*make_cpu_sampler(mesh.view(), views(maps)), {.realize = false});
+  double largest = 0;
+  for (double e : reference.expected_counts) largest = std::max(largest, e);
+  auto sampler = make_vulkan_sampler(mesh.view(), views(maps), {.validation = true});
+  for (Counting path : {Counting::automatic, Counting::compute, Counting::raster, Counting::per_triangle}) {
+    SCOPED_TRACE(to_string(path));
+    const Frame f = generate(*sampler, {.realize = false, .vulkan = {.counting = path}});
+    EXPECT_EQ(f.counting_used, path);
+    ASSERT_EQ(f.expected_counts.size(), reference.expected_counts.size());
+    for (std::size_t t = 0; t < f.expected_counts.size(); ++t) {
+      const double want = reference.expected_counts[t];
+      EXPECT_NEAR(f.expected_counts[t], want, 1e-4 * std::max(want, 1e-3 * largest)) << "triangle " << t;
+      EXPECT_EQ(f.max_density[t], reference.max_density[t]) << "triangle " << t;
+    }
+    EXPECT_NEAR(f.expected_total, reference.expected_total, 1e-4 * reference.expected_total);
+  }
 }
 
 /// Every texel different (1 + its index), so reading a wrong one changes D_T^max and the samples.
@@ -141,6 +142,35 @@ TEST_F(VulkanSampler, CountsAgreeWithTheCpuOnSliversTinyAndHugeTriangles) {
   const float huge[3][2] = {{0, 0}, {1, 0}, {0, 1}};  // half of a 256^2 map
   mesh.add_triangle(p, huge);
   expect_counts_agree(mesh, {trs_test::random_map(256, 256, 0.2, 8)});
+}
+
+/// Equilateral triangles of UV radius 0.1 to 0.2, centred uniformly in [0.2, 0.8]^2 and turned at
+/// random: small, and never slivers (whose float and double areas differ by more than 1e-4).
+Mesh small_round_triangles(int count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> center(0.2f, 0.8f), radius(0.1f, 0.2f), turn(0.0f, 2.1f), pos(-1.0f, 1.0f);
+  Mesh m;
+  for (int t = 0; t < count; ++t) {
+    const float u = center(rng), v = center(rng), r = radius(rng), a = turn(rng);
+    float p[3][3], uv[3][2];
+    for (int k = 0; k < 3; ++k) {
+      for (float& x : p[k]) x = pos(rng);
+      uv[k][0] = u + r * std::cos(a + 2.0944f * float(k));
+      uv[k][1] = v + r * std::sin(a + 2.0944f * float(k));
+    }
+    m.add_triangle(p, uv);
+  }
+  return m;
+}
+
+TEST_F(VulkanSampler, CountsAgreeWithTheCpuOnAManyTriangleMesh) {
+  // Enough triangles for automatic counting to count the small ones one invocation each, and a
+  // large one that the balanced cell pass takes.
+  Mesh mesh = small_round_triangles(70000, 23);
+  const float p[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const float large[3][2] = {{-5.0f, -4.0f}, {6.0f, -4.0f}, {0.0f, 4.6f}};  // 99 x 61 cells, wrapped
+  mesh.add_triangle(p, large);
+  expect_counts_agree(mesh, {trs_test::random_map(9, 7, 0.3, 24)});
 }
 
 TEST_F(VulkanSampler, CountsAgreeWithTheCpuWithSeveralMaps) {
@@ -211,14 +241,16 @@ TEST_F(VulkanSampler, WrapAndClampAgreeExactlyWithTheCpuFarBeyondTheUnitSquare) 
   // N_T; plain rejection sampling draws the CPU's samples in the CPU's order. GLSL leaves % of
   // a negative operand undefined; lavapipe happens to give C's remainder
   // where other drivers do not, so this test bites on GPUs.
-  const Mesh mesh = scattered_triangles(400, 21);
+  // Triangles a few texels across with UVs over [-5, 5]^2: most lattice cells they touch have
+  // negative indices far from zero.
+  const Mesh mesh = scattered_triangles(400, -4.8f, 4.8f, 0.2f, 21);
   for (Addressing addressing : {Addressing::wrap, Addressing::clamp}) {
     SCOPED_TRACE(addressing == Addressing::wrap ? "wrap" : "clamp");
     const std::vector<Map> maps = {distinct_map(7, 5, addressing)};
     const FrameRequest request{.seed = 9, .target_count = 2e5};
     const Frame reference = generate(*cpu(mesh, maps), request);
     auto sampler = gpu(mesh, maps);
-    for (Counting path : {Counting::compute, Counting::raster, Counting::per_triangle}) {
+    for (Counting path : {Counting::automatic, Counting::compute, Counting::raster, Counting::per_triangle}) {
       SCOPED_TRACE(to_string(path));
       FrameRequest r = request;
       r.vulkan.counting = path;

@@ -25,7 +25,7 @@ struct Variant {
   lightsampler::Backend backend;    ///< cpu or vulkan
   lightsampler::Method method;
   lightsampler::Counting counting;  ///< the Vulkan backend's counting path (TRS)
-  /// Backend and counting path as the tables show it: "cpu", "vk", "vk/raster", "vk/compute".
+  /// Backend and counting path as the tables show it: "cpu", "vk", "vk/auto", "vk/raster", "vk/compute", "vk/per-triangle".
   std::string engine() const;
 };
 

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <exception>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,7 @@ struct CommandLine {
   std::uint32_t map_size = 2048;
   std::vector<std::string> methods = {"trs", "rs"};
   std::vector<std::string> backends = {"cpu"};
-  std::vector<std::string> countings = {"raster", "compute"};
+  std::vector<std::string> countings = {"auto", "raster", "compute"};
   std::vector<std::string> experiments = {"sampling", "scan"};
   std::string csv;
   ExperimentSettings settings;
@@ -100,6 +101,12 @@ void print_backends(const ExperimentSettings& settings) {
   }
 }
 
+const std::map<std::string, lightsampler::Counting> kCountings = {
+    {"auto", lightsampler::Counting::automatic},
+    {"raster", lightsampler::Counting::raster},
+    {"compute", lightsampler::Counting::compute},
+    {"per-triangle", lightsampler::Counting::per_triangle}};
+
 /// Backends x methods, and for Vulkan TRS each counting path.
 std::vector<Variant> make_variants(const CommandLine& cl) {
   std::vector<Variant> variants;
@@ -113,10 +120,7 @@ std::vector<Variant> make_variants(const CommandLine& cl) {
         continue;
       }
       for (const auto& counting : cl.countings)
-        variants.push_back({backend, method,
-                            counting == "raster"    ? lightsampler::Counting::raster
-                            : counting == "compute" ? lightsampler::Counting::compute
-                                                    : lightsampler::Counting::per_triangle});
+        variants.push_back({backend, method, kCountings.at(counting)});
     }
   }
   return variants;
@@ -182,10 +186,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"cpu", "vulkan"}))
       ->capture_default_str();
   app.add_option("--counting", cl.countings,
-                 "Counting paths of the Vulkan backend: raster, compute, per-triangle (the paper's "
-                 "naive ablation)")
+                 "Counting paths of the Vulkan backend: auto (per-triangle for small triangles, "
+                 "compute for large ones), raster, compute, per-triangle (the paper's naive ablation)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"raster", "compute", "per-triangle"}))
+      ->check(CLI::IsMember(trs::names(kCountings)))
       ->capture_default_str();
   trs::add_refine_option(app, cl.settings.refinement);
   app.add_option("--device", cl.settings.vulkan_device,

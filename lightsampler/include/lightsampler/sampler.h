@@ -28,7 +28,9 @@ enum class ScanOrder { automatic, unordered, ordered };
 /// The backend that runs a sampler; `automatic` is a request only (backend.h).
 enum class Backend { automatic, cpu, vulkan };
 
-/// How the Vulkan backend enumerates (triangle, texel) pairs in the counting pass: `raster`
+/// How the Vulkan backend enumerates (triangle, texel) pairs in the counting pass. `automatic`
+/// counts each small triangle in one invocation and balances the cells of the large ones (the
+/// per-triangle and compute paths, each where it is fastest, in the same passes). `raster`
 /// rasterizes the mesh in UV space (the paper's method, conservative or dilated); `compute` runs
 /// one thread per candidate cell after a prefix sum over the triangles' footprints, for GPUs
 /// whose graphics units are a small part of the chip; `per_triangle` is the paper's naive

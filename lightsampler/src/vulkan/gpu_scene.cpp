@@ -17,6 +17,13 @@ LatticeBox bounding_cells(const core::TexelTriangle& t) {
           core::floor_to_int(std::max({xs[0], xs[1], xs[2]})), core::floor_to_int(std::max({ys[0], ys[1], ys[2]}))};
 }
 
+// Automatic counting (measured on an H100, docs/benchmarks.md): on meshes of at least
+// kManyTriangles triangles, a triangle of at most kSmallTriangleCells cells is counted by one
+// invocation; larger ones, which would stall their subgroup, go to the balanced cell pass. On
+// fewer triangles, one loop per triangle leaves most of a GPU idle, and the cell pass takes all.
+constexpr std::uint32_t kSmallTriangleCells = 4096;
+constexpr std::uint64_t kManyTriangles = 65536;
+
 void extend(LatticeBox& box, const LatticeBox& cells) {
   if (box.empty()) {
     box = cells;
@@ -71,7 +78,8 @@ void GpuScene::upload_triangles() {
   const auto records = host_.triangles();
   const auto texel_triangles = host_.texel_triangles();
   map_boxes_.assign(host_.maps().size(), {0, 0, -1, -1});
-  candidate_cells_ = 0;
+  candidate_cells_ = large_triangle_cells_ = 0;
+  small_triangle_cells_ = records.size() >= kManyTriangles ? kSmallTriangleCells : 0;
   std::vector<gpu::TexelTriangle> gpu(records.size());
   for (std::size_t t = 0; t < records.size(); ++t) {
     const core::TexelTriangle& tt = texel_triangles[t];
@@ -80,7 +88,11 @@ void GpuScene::upload_triangles() {
     if (tt.map == kNoMap) continue;
     const LatticeBox cells = bounding_cells(tt);
     extend(map_boxes_[tt.map], cells);
-    candidate_cells_ += std::uint64_t(cells.x1 - cells.x0 + 1) * std::uint64_t(cells.y1 - cells.y0 + 1);
+    // The same cells as the shaders' float bounding box, so that a triangle small here is small
+    // in the setup pass too.
+    const std::uint64_t count = std::uint64_t(cells.x1 - cells.x0 + 1) * std::uint64_t(cells.y1 - cells.y0 + 1);
+    candidate_cells_ += count;
+    if (count > small_triangle_cells_) large_triangle_cells_ += count;
   }
   if (!triangles_) triangles_ = context_.create_buffer(gpu.size() * sizeof(gpu::TexelTriangle));
   if (!gpu.empty()) context_.upload(triangles_, 0, gpu.data(), gpu.size() * sizeof(gpu::TexelTriangle));

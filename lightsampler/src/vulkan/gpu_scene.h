@@ -29,6 +29,10 @@ class GpuScene {
   /// An upper bound of the counting pass's candidate cells (every mapped triangle's bounding
   /// box), to size its dispatch: it changes only with the geometry and the maps' sizes.
   std::uint64_t candidate_cells() const { return candidate_cells_; }
+  /// Automatic counting: triangles of at most this many cells are counted one invocation each
+  /// (0: none, on meshes too small to fill a GPU that way), and the candidate cells of the others.
+  std::uint32_t small_triangle_cells() const { return small_triangle_cells_; }
+  std::uint64_t large_triangle_cells() const { return large_triangle_cells_; }
 
   VkDeviceAddress triangles() const { return triangles_.address(); }
   VkDeviceAddress map_records() const { return map_records_.address(); }
@@ -43,6 +47,8 @@ class GpuScene {
   core::HostScene host_;
   std::vector<LatticeBox> map_boxes_;
   std::uint64_t candidate_cells_ = 0;
+  std::uint32_t small_triangle_cells_ = 0;
+  std::uint64_t large_triangle_cells_ = 0;
   Buffer triangles_, map_records_, texels_, area_cdf_;
   double total_area_ = 0;
 };

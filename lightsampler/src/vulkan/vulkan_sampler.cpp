@@ -115,34 +115,41 @@ class VulkanSampler final : public Sampler {
     for (const auto& [name, ms] : times) frame.passes.push_back({pass_named(name), ms});
   }
 
-  gpu::CountingPush count_push() const {
+  /// `small_cells`: triangles of at most that many cells are counted by the setup pass.
+  gpu::CountingPush count_push(std::uint32_t small_cells = 0) const {
     return {scene_.triangles(), scene_.map_records(), scene_.texels(), buffers_.expected.address(),
             buffers_.max_density.address(), buffers_.footprint.address(), buffers_.cell_cdf.address(),
-            buffers_.totals.address(), scene_.triangle_count(), 0};
+            buffers_.totals.address(), scene_.triangle_count(), small_cells};
   }
 
   /// Counting (Algorithm 2, lines 1-8) and the total N-bar, recorded into `c`.
   void record_counting(Commands& c, const FrameRequest& request, Frame& frame) {
-    const gpu::CountingPush push = count_push();
+    const Counting path = request.vulkan.counting;
+    if (path == Counting::cpu)
+      throw std::invalid_argument("the Vulkan backend has no CPU counting path; ask for raster, compute or per-triangle");
+    const gpu::CountingPush push = count_push(path == Counting::automatic ? scene_.small_triangle_cells() : 0);
     const std::uint32_t groups = workgroups_for(scene_.triangle_count());
     c.dispatch(pipelines_.counting_setup, &push, sizeof push, groups);
     c.barrier();
-    if (request.vulkan.counting == Counting::cpu)
-      throw std::invalid_argument("the Vulkan backend has no CPU counting path; ask for raster, compute or per-triangle");
-    if (request.vulkan.counting == Counting::raster) {
+    if (path == Counting::raster) {
       record_raster_counting(c);
       frame.counting_used = Counting::raster;
-    } else if (request.vulkan.counting == Counting::per_triangle) {
+    } else if (path == Counting::per_triangle) {
       c.dispatch(pipelines_.counting_triangles, &push, sizeof push, groups);
       c.barrier();
       frame.counting_used = Counting::per_triangle;
     } else {
-      scan_.record(c, pipelines_, buffers_.footprint.address(), buffers_.cell_cdf.address(), scene_.triangle_count());
-      // One invocation per run of kCellsPerRun candidates (counting_cells.comp).
-      c.dispatch(pipelines_.counting_cells, &push, sizeof push,
-                 workgroups_for((scene_.candidate_cells() + gpu::kCellsPerRun - 1) / gpu::kCellsPerRun));
-      c.barrier();
-      frame.counting_used = Counting::compute;
+      // Automatic: the setup pass counted the small triangles; the cell pass takes the others.
+      const std::uint64_t cells =
+          path == Counting::automatic ? scene_.large_triangle_cells() : scene_.candidate_cells();
+      if (cells > 0) {
+        scan_.record(c, pipelines_, buffers_.footprint.address(), buffers_.cell_cdf.address(), scene_.triangle_count());
+        // One invocation per run of kCellsPerRun candidates (counting_cells.comp).
+        c.dispatch(pipelines_.counting_cells, &push, sizeof push,
+                   workgroups_for((cells + gpu::kCellsPerRun - 1) / gpu::kCellsPerRun));
+        c.barrier();
+      }
+      frame.counting_used = path == Counting::automatic ? Counting::automatic : Counting::compute;
     }
     c.dispatch(pipelines_.counting_total, &push, sizeof push, groups);
     c.barrier();
