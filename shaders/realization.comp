@@ -25,7 +25,7 @@ void main() {
   Totals totals = Totals(p.totals);
   uint64_t i = p.first + uint64_t(gl_GlobalInvocationID.x);
   uint64_t tries = 0ul, gave_up = 0ul;
-  if (i < totals.t.sample_count) {
+  if (i < totals.t.realized) {
     uint slot = processing_index(i);
     uint tri = Uints(p.inverse).v[slot];
     uint64_t rank = i - (slot > 0u ? uint64_at(p.cdf, slot - 1u).v[0] : 0ul);

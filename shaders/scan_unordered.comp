@@ -27,8 +27,10 @@ void main() {
       packed = atomicAdd(Totals(p.totals).t.scan_counter,
                          subgroup_sum + (uint64_t(subgroupBallotBitCount(lanes)) << p.sum_bits));
     packed = subgroupBroadcastFirst(packed);
-    if (live) {
-      uint64_t slot = (packed >> p.sum_bits) + uint64_t(subgroupBallotExclusiveBitCount(lanes));
+    uint64_t slot = (packed >> p.sum_bits) + uint64_t(subgroupBallotExclusiveBitCount(lanes));
+    // A total past the packed word's sum bits (a frame the host runs again with the ordered
+    // scan) spills into the index: never write outside the arrays.
+    if (live && slot < p.count) {
       uint64_at(p.result, slot).v[0] = (packed & sum_mask) + prefix + element;
       Uints(p.inverse).v[uint(slot)] = uint(i);
     }

@@ -60,6 +60,7 @@ struct FrameTotals {
   uint64_t candidates;
   uint64_t exhausted;
   uint64_t cells;        // candidate cells of the compute counting path
+  uint64_t realized;     // samples realization writes: N, or 0 when N exceeds the sample buffer
 };
 
 /// Addresses of the resident and per-frame buffers; every pass takes the ones it needs.
@@ -124,6 +125,15 @@ struct RealizationPush {
   uint key0, key1;
   uint triangle_count;
   uint max_tries;
+};
+
+struct PlanPush {
+  uint64_t totals;
+  uint64_t indirect;      // uint[3 * dispatches]: workgroup counts of the realization dispatches
+  uint64_t capacity;      // samples the sample buffer holds
+  uint64_t per_dispatch;  // invocations of one dispatch at most
+  uint dispatches;
+  uint pad0;
 };
 
 struct RejectionPush {

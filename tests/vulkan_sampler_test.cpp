@@ -298,6 +298,33 @@ TEST_F(VulkanSampler, RasterCountingRefusesTexelsBeyondFloatPrecision) {
   for (std::size_t t = 0; t < f.max_density.size(); ++t) EXPECT_EQ(f.max_density[t], reference.max_density[t]);
 }
 
+TEST_F(VulkanSampler, FramesWithoutATargetRealizeEverySample) {
+  // A frame runs as one submission sized from a bound on N. Without a target the bound is the
+  // last frame's N: the first frame (N about 1e5, far above the initial bound) runs again with
+  // room, and a denser map later does too. Every frame still realizes all N samples, the CPU's
+  // own wherever both backends gave a triangle the same N_T.
+  const Mesh mesh = trs_test::random_triangles(200, 0.0f, 1.0f, 31);
+  Map map = trs_test::random_map(32, 32, 0.3, 32);
+  auto sampler = gpu(mesh, {map});
+  for (float scale : {2000.0f, 2000.0f, 6000.0f}) {
+    SCOPED_TRACE(scale);
+    map.scale = scale;
+    sampler->update_map(0, map.view());
+    const Frame want = generate(*cpu(mesh, {map}), {.seed = 4});
+    const Frame got = generate(*sampler, {.seed = 4});
+    ASSERT_EQ(got.samples.size(), got.sample_count);
+    EXPECT_NEAR(double(got.sample_count), want.expected_total, 5 * std::sqrt(want.expected_total));
+    const auto a = samples_by_triangle(want), b = samples_by_triangle(got);
+    std::size_t compared = 0;
+    for (std::size_t t = 0; t < a.size(); ++t) {
+      if (want.counts[t] != got.counts[t]) continue;
+      ASSERT_EQ(b[t], a[t]) << "triangle " << t;
+      ++compared;
+    }
+    EXPECT_GT(compared, a.size() * 9 / 10);
+  }
+}
+
 TEST_F(VulkanSampler, UnorderedScanIsAPermutation) {
   for (int triangles : {1, 255, 257, 1000, 70001}) {
     SCOPED_TRACE(triangles);

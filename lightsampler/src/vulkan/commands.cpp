@@ -133,6 +133,13 @@ void Commands::dispatch(const ComputePipeline& p, const void* push, std::uint32_
   vkCmdDispatch(cmd_, groups, 1, 1);
 }
 
+void Commands::dispatch_indirect(const ComputePipeline& p, const void* push, std::uint32_t push_size,
+                                 const Buffer& args, VkDeviceSize offset) {
+  vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+  if (push_size > 0) vkCmdPushConstants(cmd_, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size, push);
+  vkCmdDispatchIndirect(cmd_, args.handle(), offset);
+}
+
 void Commands::draw(const RasterPipeline& p, const void* push, std::uint32_t push_size, std::uint32_t width,
                     std::uint32_t height, std::uint32_t vertices) {
   const Context::State& s = *context_->state_;

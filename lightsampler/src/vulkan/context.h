@@ -140,6 +140,10 @@ class Commands {
   /// Binds and dispatches `groups` workgroups in x (at most max_workgroup_count_x, else throws
   /// std::invalid_argument).
   void dispatch(const ComputePipeline& p, const void* push, std::uint32_t push_size, std::uint32_t groups);
+  /// Dispatches the workgroup counts (x, y, z: three uint32) at byte `offset` of `args`, written
+  /// on the device by an earlier pass (with a barrier between).
+  void dispatch_indirect(const ComputePipeline& p, const void* push, std::uint32_t push_size, const Buffer& args,
+                         VkDeviceSize offset);
   /// Begins dynamic rendering over a width x height area with no attachments, sets viewport
   /// and scissor to it, draws `vertices` vertices with the pipeline, ends rendering.
   void draw(const RasterPipeline& p, const void* push, std::uint32_t push_size, std::uint32_t width,

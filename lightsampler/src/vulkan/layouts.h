@@ -11,8 +11,10 @@ namespace lightsampler::gpu {
 static_assert(sizeof(TexelTriangle) == 32 && offsetof(TexelTriangle, area) == 24 && offsetof(TexelTriangle, map) == 28);
 static_assert(sizeof(DensityMap) == 32 && offsetof(DensityMap, scale) == 16);
 static_assert(sizeof(Sample) == kSampleBytes && sizeof(lightsampler::Sample) == kSampleBytes);
-static_assert(sizeof(FrameTotals) == 48 && offsetof(FrameTotals, sample_count) == 8 &&
-              offsetof(FrameTotals, scan_counter) == 16 && offsetof(FrameTotals, cells) == 40);
+static_assert(sizeof(FrameTotals) == 56 && offsetof(FrameTotals, sample_count) == 8 &&
+              offsetof(FrameTotals, scan_counter) == 16 && offsetof(FrameTotals, cells) == 40 &&
+              offsetof(FrameTotals, realized) == 48);
+static_assert(sizeof(PlanPush) == 40 && offsetof(PlanPush, dispatches) == 32);
 static_assert(sizeof(CountingPush) == 72 && offsetof(CountingPush, triangle_count) == 64);
 static_assert(sizeof(RasterPush) == 72 && offsetof(RasterPush, origin_x) == 48 && offsetof(RasterPush, map) == 64);
 static_assert(sizeof(RoundingPush) == 48 && offsetof(RoundingPush, target) == 24 && offsetof(RoundingPush, key0) == 32);

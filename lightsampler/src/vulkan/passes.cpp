@@ -6,6 +6,7 @@
 #include "spirv/counting_setup_comp.h"
 #include "spirv/counting_triangles_comp.h"
 #include "spirv/realization_comp.h"
+#include "spirv/realization_plan_comp.h"
 #include "spirv/rejection_distribution_comp.h"
 #include "spirv/rejection_comp.h"
 #include "spirv/rounding_comp.h"
@@ -25,6 +26,7 @@ Pipelines::Pipelines(Context& c)
       scan_unordered(c.create_compute(spirv::scan_unordered_comp, sizeof(gpu::ScanPush))),
       scan_local(c.create_compute(spirv::scan_local_comp, sizeof(gpu::ScanPush))),
       scan_add(c.create_compute(spirv::scan_add_comp, sizeof(gpu::ScanPush))),
+      realization_plan(c.create_compute(spirv::realization_plan_comp, sizeof(gpu::PlanPush))),
       realization(c.create_compute(spirv::realization_comp, sizeof(gpu::RealizationPush))),
       rejection_distribution(c.create_compute(spirv::rejection_distribution_comp, sizeof(gpu::RejectionPush))),
       rejection(c.create_compute(spirv::rejection_comp, sizeof(gpu::RejectionPush))) {}

@@ -51,6 +51,7 @@ std::uint32_t device_max_tries(const std::string& device, std::uint32_t requeste
 struct FrameBuffers {
   Buffer expected, max_density, footprint, cell_cdf, counts, cdf, inverse, identity, totals, samples;
   Buffer totals_readback;  ///< host-visible copy of `totals`: shader atomics stay in device memory
+  Buffer dispatch_args;    ///< realization's indirect workgroup counts, written by the plan pass
 };
 
 class VulkanSampler final : public Sampler {
@@ -217,56 +218,108 @@ class VulkanSampler final : public Sampler {
     d.barrier();
   }
 
-  void ensure_samples(std::uint64_t n) {
+  /// Grows the sample buffer to at least n samples; returns how many it holds.
+  std::uint64_t ensure_samples(std::uint64_t n) {
     const VkDeviceSize bytes = std::max<std::uint64_t>(n, 1) * sizeof(gpu::Sample);
     if (!buffers_.samples || buffers_.samples.size() < bytes) {
       buffers_.samples = Buffer();  // free the old one first: samples can be most of the memory
       buffers_.samples = context_->create_buffer(bytes);
     }
+    return buffers_.samples.size() / sizeof(gpu::Sample);
   }
 
+  /// One submission: counting, rounding, scan and realization, sized on the device. The host
+  /// chooses the scan and the sample buffer from a bound on N: the target plus one per triangle
+  /// (stochastic rounding adds at most one to each), with room for the float total's rounding;
+  /// without a target, the last such frame's N with room to spare. A frame whose N exceeds the
+  /// bound (a first frame without a target, or a total off by more than that room) realizes
+  /// nothing and runs again with a larger one: same seed, same samples.
   void generate_trs(const FrameRequest& request, Frame& frame) {
     const std::uint32_t n_tri = scene_.triangle_count();
+    std::uint64_t bound = request.target_count
+                              ? std::uint64_t(std::ceil(*request.target_count * (1.0 + 0x1p-10))) + n_tri + 1
+                              : last_count_ + last_count_ / 64 + 1024;
+    for (;;) {
+      const std::uint64_t capacity = request.realize ? ensure_samples(bound) : 0;
+      const std::uint64_t limit = request.realize ? capacity : bound;  // the N this run is valid for
+      const gpu::FrameTotals totals = run_trs(request, frame, capacity, limit);
+      frame.expected_total = totals.expected_total;
+      core::validate_expected_total(frame.expected_total);
+      frame.sample_count = totals.sample_count;
+      if (frame.sample_count <= limit) break;
+      bound = frame.sample_count + frame.sample_count / 64 + n_tri;
+      frame.passes.clear();
+    }
+    if (!request.target_count) last_count_ = frame.sample_count;
+    if (request.vulkan.read_back) read_back(frame, {.counted = true, .inverse = trs_inverse(frame)}, request.realize);
+  }
+
+  const Buffer* trs_inverse(const Frame& frame) const {
+    return frame.scan_used == ScanOrder::unordered ? &buffers_.inverse : &buffers_.identity;
+  }
+
+  /// Records and runs one TRS frame, its scan chosen for a total of at most `limit`, realizing
+  /// N samples if N fits in `capacity` and none otherwise. Returns the frame's totals.
+  gpu::FrameTotals run_trs(const FrameRequest& request, Frame& frame, std::uint64_t capacity, std::uint64_t limit) {
+    const std::uint32_t n_tri = scene_.triangle_count();
+    // Automatic: unordered, one packed atomic per subgroup (Section 5).
+    frame.scan_used = core::choose_scan(request.scan, ScanOrder::unordered, n_tri, limit);
     Commands c = context_->begin();
     c.fill(buffers_.totals, 0, sizeof(gpu::FrameTotals), 0);
     c.barrier();
     record_counting(c, request, frame);
     const PhiloxKey rounding_key = stream_key(request.seed, Stream::rounding);
     const gpu::RoundingPush round{buffers_.expected.address(), buffers_.counts.address(), buffers_.totals.address(),
-                               request.target_count ? *request.target_count : -1.0, rounding_key[0],
-                               rounding_key[1], n_tri, 0};
+                                  request.target_count ? *request.target_count : -1.0, rounding_key[0],
+                                  rounding_key[1], n_tri, 0};
     c.dispatch(pipelines_.rounding, &round, sizeof round, workgroups_for(n_tri));
     c.barrier();
     c.timestamp(to_string(Pass::rounding));
-    const gpu::FrameTotals counted = submit(c, frame);
-    frame.expected_total = counted.expected_total;
-    core::validate_expected_total(frame.expected_total);
-    frame.sample_count = counted.sample_count;
-    // Automatic: unordered, one packed atomic per subgroup (Section 5).
-    frame.scan_used = core::choose_scan(request.scan, ScanOrder::unordered, n_tri, frame.sample_count);
-    if (request.realize) ensure_samples(frame.sample_count);
-
-    Commands d = context_->begin();
-    const Buffer& inverse = frame.scan_used == ScanOrder::unordered ? buffers_.inverse : buffers_.identity;
     if (frame.scan_used == ScanOrder::unordered && n_tri > 0) {
       const gpu::ScanPush scan{buffers_.counts.address(), buffers_.cdf.address(), 0, buffers_.inverse.address(),
                                buffers_.totals.address(), n_tri, std::uint32_t(64 - std::bit_width(std::uint64_t(n_tri))), 0};
-      d.dispatch(pipelines_.scan_unordered, &scan, sizeof scan, workgroups_for(n_tri));
-      d.barrier();
+      c.dispatch(pipelines_.scan_unordered, &scan, sizeof scan, workgroups_for(n_tri));
+      c.barrier();
     } else {
-      scan_.record(d, pipelines_, buffers_.counts.address(), buffers_.cdf.address(), n_tri);
+      scan_.record(c, pipelines_, buffers_.counts.address(), buffers_.cdf.address(), n_tri);
     }
-    d.timestamp(to_string(Pass::scan));
-    if (request.realize && frame.sample_count > 0) {
+    c.timestamp(to_string(Pass::scan));
+    if (capacity > 0) {
       const PhiloxKey key = stream_key(request.seed, Stream::realization);
       const gpu::RealizationPush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
-                                  buffers_.max_density.address(), buffers_.cdf.address(), inverse.address(),
-                                  buffers_.samples.address(), buffers_.totals.address(), 0, key[0], key[1],
-                                  n_tri, device_max_tries(context_->device_name(), request.max_tries)};
-      dispatch_per_sample(d, pipelines_.realization, push, frame.sample_count);
-      d.timestamp(to_string(Pass::realization));
+                                      buffers_.max_density.address(), buffers_.cdf.address(),
+                                      trs_inverse(frame)->address(), buffers_.samples.address(),
+                                      buffers_.totals.address(), 0, key[0], key[1], n_tri,
+                                      device_max_tries(context_->device_name(), request.max_tries)};
+      record_realization(c, pipelines_.realization, push, capacity);
+      c.timestamp(to_string(Pass::realization));
     }
-    finish(d, request, frame, {.counted = true, .inverse = &inverse});
+    const gpu::FrameTotals totals = submit(c, frame);
+    frame.candidates = totals.candidates;
+    frame.exhausted = totals.exhausted;
+    return totals;
+  }
+
+  /// Realization sized on the device: the plan pass writes how many samples to realize (N, or
+  /// none when N exceeds `capacity`) and the workgroup counts of as many dispatches as `capacity` could need
+  /// under the device's workgroup-count limit; each dispatch then runs one invocation per sample.
+  void record_realization(Commands& c, const vk::ComputePipeline& pipeline, gpu::RealizationPush push,
+                          std::uint64_t capacity) {
+    const std::uint64_t per_dispatch =
+        std::uint64_t(context_->capabilities().max_workgroup_count_x) * gpu::kWorkgroupSize;
+    const auto dispatches = std::uint32_t((capacity + per_dispatch - 1) / per_dispatch);
+    const VkDeviceSize args_bytes = VkDeviceSize(dispatches) * 3 * sizeof(std::uint32_t);
+    if (!buffers_.dispatch_args || buffers_.dispatch_args.size() < args_bytes)
+      buffers_.dispatch_args = context_->create_buffer(args_bytes);
+    const gpu::PlanPush plan{buffers_.totals.address(), buffers_.dispatch_args.address(), capacity, per_dispatch,
+                             dispatches, 0};
+    c.dispatch(pipelines_.realization_plan, &plan, sizeof plan, 1);
+    c.barrier();
+    for (std::uint32_t k = 0; k < dispatches; ++k) {
+      push.first = std::uint64_t(k) * per_dispatch;
+      c.dispatch_indirect(pipeline, &push, sizeof push, buffers_.dispatch_args, VkDeviceSize(k) * 3 * sizeof(std::uint32_t));
+    }
+    c.barrier();
   }
 
   void generate_rejection(const FrameRequest& request, Frame& frame) {
@@ -357,6 +410,7 @@ class VulkanSampler final : public Sampler {
   vk::OrderedScan scan_;
   FrameBuffers buffers_;
   std::unique_ptr<vk::RasterPipeline> raster_;
+  std::uint64_t last_count_ = 0;  ///< N of the last frame without a target: the next one's bound
 };
 
 }  // namespace
