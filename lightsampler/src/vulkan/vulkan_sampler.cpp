@@ -1,5 +1,6 @@
-// The Vulkan backend: the passes of shaders/ recorded in two submissions per frame. The host
-// reads N between them, to size the sample buffer and to choose the scan.
+// The Vulkan backend: the passes of shaders/, recorded in one submission per TRS frame and sized
+// on the device. Plain rejection sampling reads its bound (and, without a target, N-bar) between
+// two submissions.
 
 #include <algorithm>
 #include <bit>
