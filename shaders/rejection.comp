@@ -22,7 +22,7 @@ void main() {
   Totals totals = Totals(p.totals);
   uint64_t i = p.first + uint64_t(gl_GlobalInvocationID.x);
   uint64_t tries = 0ul, gave_up = 0ul;
-  if (i < p.sample_count) {
+  if (i < totals.t.realized) {
     float bound = uintBitsToFloat(totals.t.max_density_bits);
     double total_area = Doubles(p.area_cdf).v[p.triangle_count - 1u];
     uvec2 key = uvec2(p.key0, p.key1);

@@ -127,13 +127,19 @@ struct RealizationPush {
   uint max_tries;
 };
 
+LS_CONST uint kPlanTrs = 0u;        // N from the rounding pass
+LS_CONST uint kPlanRejection = 1u;  // N: the target (or N-bar) rounded, if anything can be drawn
+
 struct PlanPush {
   uint64_t totals;
   uint64_t indirect;      // uint[3 * dispatches]: workgroup counts of the realization dispatches
   uint64_t capacity;      // samples the sample buffer holds
   uint64_t per_dispatch;  // invocations of one dispatch at most
+  double target;          // kPlanRejection: N_target; negative: N-bar
+  double total_area;      // kPlanRejection: the mesh's world area
   uint dispatches;
-  uint pad0;
+  uint method;            // kPlanTrs or kPlanRejection
+  uint key0, key1;        // kPlanRejection: Philox key of the rounding stream
 };
 
 struct RejectionPush {
@@ -143,7 +149,6 @@ struct RejectionPush {
   uint64_t area_cdf;  // double[T], inclusive CDF of world areas
   uint64_t samples;
   uint64_t totals;
-  uint64_t sample_count;
   uint64_t first;     // realization: sample of this dispatch's first invocation
   uint key0, key1;
   uint triangle_count;

@@ -325,6 +325,23 @@ TEST_F(VulkanSampler, FramesWithoutATargetRealizeEverySample) {
   }
 }
 
+TEST_F(VulkanSampler, RejectionSamplingWithoutATargetDrawsTheCpuSamples) {
+  // N is N-bar rounded, on the device from a float total (the CPU's is a double): the counts may
+  // differ by one, and sample i is the same point on both backends, keyed by i.
+  const Mesh mesh = trs_test::random_triangles(100, 0.0f, 1.0f, 33);
+  Map map = trs_test::random_map(16, 16, 0.3, 34);
+  map.scale = 500.0f;
+  const FrameRequest request{.seed = 6, .method = Method::rejection};
+  const Frame want = generate(*cpu(mesh, {map}), request), got = generate(*gpu(mesh, {map}), request);
+  ASSERT_GT(want.sample_count, 1000u);
+  EXPECT_LE(std::max(want.sample_count, got.sample_count) - std::min(want.sample_count, got.sample_count), 1u);
+  ASSERT_EQ(got.samples.size(), got.sample_count);
+  for (std::size_t i = 0; i < std::min(want.samples.size(), got.samples.size()); ++i) {
+    const Sample &a = want.samples[i], &b = got.samples[i];
+    ASSERT_TRUE(a.triangle == b.triangle && a.b1 == b.b1 && a.b2 == b.b2) << "sample " << i;
+  }
+}
+
 TEST_F(VulkanSampler, UnorderedScanIsAPermutation) {
   for (int triangles : {1, 255, 257, 1000, 70001}) {
     SCOPED_TRACE(triangles);

@@ -96,10 +96,7 @@ class VulkanSampler final : public Sampler {
   void generate(const FrameRequest& request, Frame& frame) override {
     core::begin_frame(request, frame);
     const auto start = std::chrono::steady_clock::now();
-    if (request.method == Method::trs)
-      generate_trs(request, frame);
-    else
-      generate_rejection(request, frame);
+    run_frame(request, frame);
     frame.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
 
@@ -204,21 +201,6 @@ class VulkanSampler final : public Sampler {
     return *raster_;
   }
 
-  /// One invocation per sample (the realization passes loop over tries, not over samples), in
-  /// as many dispatches as the device's workgroup-count limit requires.
-  template <class Push>
-  void dispatch_per_sample(Commands& d, const vk::ComputePipeline& pipeline, Push push, std::uint64_t n) {
-    const std::uint64_t per_dispatch =
-        std::uint64_t(context_->capabilities().max_workgroup_count_x) * gpu::kWorkgroupSize;
-    for (std::uint64_t first = 0; first < n; first += per_dispatch) {
-      push.first = first;
-      const std::uint64_t invocations = std::min(per_dispatch, n - first);
-      d.dispatch(pipeline, &push, sizeof push,
-                 std::uint32_t((invocations + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize));
-    }
-    d.barrier();
-  }
-
   /// Grows the sample buffer to at least n samples; returns how many it holds.
   std::uint64_t ensure_samples(std::uint64_t n) {
     const VkDeviceSize bytes = std::max<std::uint64_t>(n, 1) * sizeof(gpu::Sample);
@@ -229,30 +211,37 @@ class VulkanSampler final : public Sampler {
     return buffers_.samples.size() / sizeof(gpu::Sample);
   }
 
-  /// One submission: counting, rounding, scan and realization, sized on the device. The host
-  /// chooses the scan and the sample buffer from a bound on N: the target plus one per triangle
-  /// (stochastic rounding adds at most one to each), with room for the float total's rounding;
-  /// without a target, the last such frame's N with room to spare. A frame whose N exceeds the
-  /// bound (a first frame without a target, or a total off by more than that room) realizes
-  /// nothing and runs again with a larger one: same seed, same samples.
-  void generate_trs(const FrameRequest& request, Frame& frame) {
+  /// One submission per frame, sized on the device. The host chooses the sample buffer (and the
+  /// scan) from a bound on N: the target plus one per triangle (stochastic rounding adds at most
+  /// one to each), with room for the float total's rounding; without a target, the last such
+  /// frame's N with room to spare. A frame whose N exceeds the bound (a first frame without a
+  /// target, or a map made denser) realizes nothing and runs again with room: same seed, same
+  /// samples.
+  void run_frame(const FrameRequest& request, Frame& frame) {
     const std::uint32_t n_tri = scene_.triangle_count();
+    const bool trs = request.method == Method::trs, counted = trs || !request.target_count;
     std::uint64_t bound = request.target_count
                               ? std::uint64_t(std::ceil(*request.target_count * (1.0 + 0x1p-10))) + n_tri + 1
                               : last_count_ + last_count_ / 64 + 1024;
     for (;;) {
       const std::uint64_t capacity = request.realize ? ensure_samples(bound) : 0;
       const std::uint64_t limit = request.realize ? capacity : bound;  // the N this run is valid for
-      const gpu::FrameTotals totals = run_trs(request, frame, capacity, limit);
-      frame.expected_total = totals.expected_total;
-      core::validate_expected_total(frame.expected_total);
+      const gpu::FrameTotals totals = trs ? run_trs(request, frame, capacity, limit) : run_rejection(request, frame, capacity);
+      frame.candidates = totals.candidates;
+      frame.exhausted = totals.exhausted;
+      if (counted) {
+        frame.expected_total = totals.expected_total;
+        core::validate_expected_total(frame.expected_total);
+      }
       frame.sample_count = totals.sample_count;
       if (frame.sample_count <= limit) break;
       bound = frame.sample_count + frame.sample_count / 64 + n_tri;
       frame.passes.clear();
     }
     if (!request.target_count) last_count_ = frame.sample_count;
-    if (request.vulkan.read_back) read_back(frame, {.counted = true, .inverse = trs_inverse(frame)}, request.realize);
+    if (!trs) frame.scan_used = ScanOrder::ordered;
+    if (request.vulkan.read_back)
+      read_back(frame, {.counted = counted, .inverse = trs ? trs_inverse(frame) : nullptr}, request.realize);
   }
 
   const Buffer* trs_inverse(const Frame& frame) const {
@@ -292,28 +281,60 @@ class VulkanSampler final : public Sampler {
                                       trs_inverse(frame)->address(), buffers_.samples.address(),
                                       buffers_.totals.address(), 0, key[0], key[1], n_tri,
                                       device_max_tries(context_->device_name(), request.max_tries)};
-      record_realization(c, pipelines_.realization, push, capacity);
+      record_realization(c, pipelines_.realization, push, {.method = gpu::kPlanTrs}, capacity);
       c.timestamp(to_string(Pass::realization));
     }
-    const gpu::FrameTotals totals = submit(c, frame);
-    frame.candidates = totals.candidates;
-    frame.exhausted = totals.exhausted;
-    return totals;
+    return submit(c, frame);
+  }
+
+  /// Records and runs one frame of plain rejection sampling: the bound of every map (and N-bar
+  /// without a target), then N and realization sized on the device. Returns the frame's totals.
+  gpu::FrameTotals run_rejection(const FrameRequest& request, Frame& frame, std::uint64_t capacity) {
+    const std::uint32_t n_tri = scene_.triangle_count();
+    Commands c = context_->begin();
+    c.fill(buffers_.totals, 0, sizeof(gpu::FrameTotals), 0);
+    c.barrier();
+    if (!request.target_count) record_counting(c, request, frame);  // Algorithm 1 needs N
+    for (std::size_t m = 0; m < scene_.host().maps().size(); ++m) {
+      const std::uint32_t texels = std::uint32_t(scene_.host().maps()[m].texels.size());
+      const gpu::RejectionPush push{0, scene_.map_records(), scene_.texels(), 0, 0, buffers_.totals.address(),
+                                    0, 0, 0, n_tri, 0, texels, std::uint32_t(m)};
+      c.dispatch(pipelines_.rejection_distribution, &push, sizeof push, workgroups_for(texels));
+    }
+    c.barrier();
+    c.timestamp(to_string(Pass::distribution));
+    const PhiloxKey key = stream_key(request.seed, Stream::rejection);
+    const PhiloxKey rounding_key = stream_key(request.seed, Stream::rounding);
+    const gpu::RejectionPush push{scene_.triangles(), scene_.map_records(), scene_.texels(), scene_.area_cdf(),
+                                  buffers_.samples.address(), buffers_.totals.address(), 0, key[0], key[1], n_tri,
+                                  device_max_tries(context_->device_name(), request.max_tries), 0, 0};
+    const gpu::PlanPush plan{.target = request.target_count ? *request.target_count : -1.0,
+                             .total_area = n_tri > 0 ? scene_.total_area() : 0.0,
+                             .method = gpu::kPlanRejection,
+                             .key0 = rounding_key[0],
+                             .key1 = rounding_key[1]};
+    record_realization(c, pipelines_.rejection, push, plan, capacity);
+    if (capacity > 0) c.timestamp(to_string(Pass::realization));
+    return submit(c, frame);
   }
 
   /// Realization sized on the device: the plan pass writes how many samples to realize (N, or
   /// none when N exceeds `capacity`) and the workgroup counts of as many dispatches as `capacity` could need
   /// under the device's workgroup-count limit; each dispatch then runs one invocation per sample.
-  void record_realization(Commands& c, const vk::ComputePipeline& pipeline, gpu::RealizationPush push,
+  template <class Push>
+  void record_realization(Commands& c, const vk::ComputePipeline& pipeline, Push push, gpu::PlanPush plan,
                           std::uint64_t capacity) {
     const std::uint64_t per_dispatch =
         std::uint64_t(context_->capabilities().max_workgroup_count_x) * gpu::kWorkgroupSize;
     const auto dispatches = std::uint32_t((capacity + per_dispatch - 1) / per_dispatch);
     const VkDeviceSize args_bytes = VkDeviceSize(dispatches) * 3 * sizeof(std::uint32_t);
-    if (!buffers_.dispatch_args || buffers_.dispatch_args.size() < args_bytes)
+    if (!buffers_.dispatch_args || buffers_.dispatch_args.size() < args_bytes)  // an empty one has an address too
       buffers_.dispatch_args = context_->create_buffer(args_bytes);
-    const gpu::PlanPush plan{buffers_.totals.address(), buffers_.dispatch_args.address(), capacity, per_dispatch,
-                             dispatches, 0};
+    plan.totals = buffers_.totals.address();
+    plan.indirect = buffers_.dispatch_args.address();
+    plan.capacity = capacity;
+    plan.per_dispatch = per_dispatch;
+    plan.dispatches = dispatches;
     c.dispatch(pipelines_.realization_plan, &plan, sizeof plan, 1);
     c.barrier();
     for (std::uint32_t k = 0; k < dispatches; ++k) {
@@ -323,60 +344,11 @@ class VulkanSampler final : public Sampler {
     c.barrier();
   }
 
-  void generate_rejection(const FrameRequest& request, Frame& frame) {
-    const std::uint32_t n_tri = scene_.triangle_count();
-    Commands c = context_->begin();
-    c.fill(buffers_.totals, 0, sizeof(gpu::FrameTotals), 0);
-    c.barrier();
-    if (!request.target_count) record_counting(c, request, frame);  // Algorithm 1 needs N
-    for (std::size_t m = 0; m < scene_.host().maps().size(); ++m) {
-      const std::uint32_t texels = std::uint32_t(scene_.host().maps()[m].texels.size());
-      const gpu::RejectionPush push{0, scene_.map_records(), scene_.texels(), 0, 0, buffers_.totals.address(),
-                                    0, 0, 0, 0, n_tri, 0, texels, std::uint32_t(m)};
-      c.dispatch(pipelines_.rejection_distribution, &push, sizeof push, workgroups_for(texels));
-    }
-    c.barrier();
-    c.timestamp(to_string(Pass::distribution));
-    const gpu::FrameTotals bounded = submit(c, frame);
-    double target;
-    if (request.target_count) {
-      target = *request.target_count;
-    } else {
-      frame.expected_total = bounded.expected_total;
-      core::validate_expected_total(frame.expected_total);
-      target = frame.expected_total;
-    }
-    const float bound = std::bit_cast<float>(bounded.max_density_bits);
-    frame.sample_count =
-        core::rejection_sample_count(target, bound, n_tri > 0 ? scene_.total_area() : 0.0, request.seed);
-    frame.scan_used = ScanOrder::ordered;
-    if (request.realize) ensure_samples(frame.sample_count);
-    Commands d = context_->begin();
-    if (request.realize && frame.sample_count > 0) {
-      const PhiloxKey key = stream_key(request.seed, Stream::rejection);
-      const gpu::RejectionPush push{scene_.triangles(), scene_.map_records(), scene_.texels(), scene_.area_cdf(),
-                                    buffers_.samples.address(), buffers_.totals.address(), frame.sample_count,
-                                    0, key[0], key[1], n_tri,
-                                    device_max_tries(context_->device_name(), request.max_tries), 0, 0};
-      dispatch_per_sample(d, pipelines_.rejection, push, frame.sample_count);
-      d.timestamp(to_string(Pass::realization));
-    }
-    finish(d, request, frame, {.counted = !request.target_count});
-  }
-
   /// What a frame computed on the device, to copy back.
   struct Outputs {
     bool counted = false;             ///< N-bar_T and D_T^max
     const Buffer* inverse = nullptr;  ///< N_T, the CDF and this inverse permutation (TRS)
   };
-
-  /// Runs the last submission, then reads its totals and the outputs the request asks for.
-  void finish(Commands& d, const FrameRequest& request, Frame& frame, Outputs outputs) {
-    const gpu::FrameTotals realized = submit(d, frame);
-    frame.candidates = realized.candidates;
-    frame.exhausted = realized.exhausted;
-    if (request.vulkan.read_back) read_back(frame, outputs, request.realize);
-  }
 
   /// Copies the frame's device outputs into `frame` (what was not computed is left empty, as by
   /// the CPU backend), timed as the "readback" pass on the host clock.
