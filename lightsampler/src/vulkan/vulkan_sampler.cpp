@@ -1,6 +1,5 @@
-// The Vulkan backend: the passes of shaders/, recorded in one submission per TRS frame and sized
-// on the device. Plain rejection sampling reads its bound (and, without a target, N-bar) between
-// two submissions.
+// The Vulkan backend: the passes of shaders/, recorded in one submission per frame (TRS or plain
+// rejection sampling) and sized on the device.
 
 #include <algorithm>
 #include <bit>
