@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "lightsampler/refinement.h"
 #include "support/gltf_quad.h"
 #include "support/subprocess.h"
 
@@ -195,6 +196,20 @@ TEST_F(CliTest, WritesNothingWithoutOut) {
   EXPECT_NE(result.out.find("samples"), std::string::npos) << result.out;
 }
 
+TEST_F(CliTest, RefinementIsAutomaticByDefault) {
+  const fs::path mesh = write_quad_gltf("quad.gltf");
+  const fs::path map = write_top_row_map("map.exr", 400.0f);
+  for (const auto& [args, refine] : std::vector<std::pair<std::vector<std::string>, double>>{
+           {{}, lightsampler::kAutoMinAcceptance}, {{"--refine", "auto"}, lightsampler::kAutoMinAcceptance},
+           {{"--refine", "0"}, 0.0}, {{"--refine", "0.75"}, 0.75}}) {
+    std::vector<std::string> command = {mesh.string(), map.string(), "--count", "1000", "--stats", file("s.json").string()};
+    command.insert(command.end(), args.begin(), args.end());
+    const RunResult result = run(command);
+    ASSERT_EQ(result.status, 0) << result.err;
+    EXPECT_FLOAT_EQ(read_json(file("s.json"))["refine"].get<double>(), refine);
+  }
+}
+
 TEST_F(CliTest, RejectionMethodAndOrderedScan) {
   const fs::path mesh = write_quad_gltf("quad.gltf");
   const fs::path map = write_top_row_map("map.exr", 400.0f);
@@ -282,6 +297,8 @@ TEST_F(CliTest, UsageErrorsExitWithTwo) {
   EXPECT_EQ(run({mesh, map, "--no-such-option"}).status, 2);
   EXPECT_EQ(run({mesh, map, "--backend", "opencl"}).status, 2);
   EXPECT_EQ(run({mesh, map, "--counting", "magic"}).status, 2);
+  EXPECT_EQ(run({mesh, map, "--refine", "often"}).status, 2);
+  EXPECT_EQ(run({mesh, map, "--refine", "1.5"}).status, 2);
   EXPECT_EQ(run({mesh, map, "--backend", "auto"}).status, 0);
 }
 

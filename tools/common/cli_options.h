@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -36,15 +37,27 @@ inline const CLI::Validator kFiniteNonNegative(
     },
     "NUMBER >= 0");
 
-/// --refine: the light sampler's adaptive subdivision (lightsampler/refinement.h).
+/// --refine ACCEPTANCE|auto: the light sampler's adaptive subdivision (lightsampler/refinement.h);
+/// `auto` is lightsampler::kAutoMinAcceptance. The default is what `refinement` holds.
 inline CLI::Option* add_refine_option(CLI::App& app, lightsampler::Refinement& refinement) {
+  const auto text = [](float value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+  };
+  const std::string current =
+      refinement.min_acceptance == lightsampler::kAutoMinAcceptance ? "auto" : text(refinement.min_acceptance);
   return app
-      .add_option("--refine", refinement.min_acceptance,
-                  "split triangles (at most into 4^8 parts, not below 4 texels) while the "
-                  "sampler's expected acceptance on them is below this; 0: sample the mesh as "
-                  "it is")
-      ->check(CLI::Range(0.0f, 1.0f))
-      ->capture_default_str();
+      .add_option_function<std::string>(
+          "--refine",
+          [&refinement](const std::string& value) {
+            refinement.min_acceptance = value == "auto" ? lightsampler::kAutoMinAcceptance : std::stof(value);
+          },
+          "split triangles (at most into 4^8 parts, not below 4 texels) while the sampler's "
+          "expected acceptance on them is below this; auto: " + text(lightsampler::kAutoMinAcceptance) +
+              ", measured; 0: sample the mesh as it is")
+      ->check(CLI::IsMember({"auto"}) | CLI::Range(0.0f, 1.0f))
+      ->default_str(current);
 }
 
 }  // namespace trs

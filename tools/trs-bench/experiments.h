@@ -36,7 +36,8 @@ struct ExperimentSettings {
   unsigned threads = 0;  ///< 0: every hardware thread
   MeasureSettings measure;
   double scan_target = 1e6;  ///< target of the scan comparison's frames
-  lightsampler::Refinement refinement;  ///< the samplers' adaptive subdivision (off: the paper's)
+  /// The samplers' adaptive subdivision: auto by default, 0 for the paper's sampler as it is.
+  lightsampler::Refinement refinement{.min_acceptance = lightsampler::kAutoMinAcceptance};
 };
 
 /// Every mesh x map x count x variant. A case whose frame time, extrapolated from the previous
