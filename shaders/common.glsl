@@ -129,17 +129,6 @@ bool uv_degenerate(TexelTriangle t) {
   return t.edge1_x == 0.0 && t.edge1_y == 0.0 && t.edge2_x == 0.0 && t.edge2_y == 0.0;
 }
 
-// Adds an invocation's candidates and exhausted samples to the frame's totals, one atomic per
-// subgroup.
-void count_tries(Totals totals, uint64_t tries, uint64_t gave_up) {
-  tries = subgroupAdd(tries);
-  gave_up = subgroupAdd(gave_up);
-  if (subgroupElect()) {
-    if (tries > 0ul) atomicAdd(totals.t.candidates, tries);
-    if (gave_up > 0ul) atomicAdd(totals.t.exhausted, gave_up);
-  }
-}
-
 // Non-negative floats order as their bits: atomicMax on uint is a float max.
 void atomic_max_float(Uints values, uint i, float value) {
   atomicMax(values.v[i], floatBitsToUint(value));
