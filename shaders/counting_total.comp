@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // N-bar: the sum of the per-triangle expected counts (float atomics, order unspecified).
-#include "common.glsl"
+#include "workgroup.glsl"
 #include "grid.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
@@ -11,6 +11,6 @@ void main() {
   float sum = 0.0;
   for (uint64_t i = thread_index(); i < uint64_t(p.triangle_count); i += thread_count())
     sum += Floats(p.expected).v[uint(i)];
-  sum = subgroupAdd(sum);
-  if (subgroupElect() && sum > 0.0) atomicAdd(Totals(p.totals).t.expected_total, sum);
+  sum = workgroup_add(sum);
+  if (gl_LocalInvocationIndex == 0u && sum > 0.0) atomicAdd(Totals(p.totals).t.expected_total, sum);
 }

@@ -3,7 +3,7 @@
 // Realization (Algorithm 4): one thread per sample. Binary search in the (unordered) CDF,
 // inverse permutation, then candidates from Heitz's map accepted against D_T^max. Random
 // numbers keyed by (triangle, rank within the triangle, try), as in the CPU backend.
-#include "tries.glsl"
+#include "workgroup.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
 layout(push_constant) uniform Push { RealizationPush p; };

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Plain rejection sampling (Algorithm 1): triangle by area (binary search in the area CDF),
 // uniform point, accepted against the global bound. Same stream as the CPU backend.
-#include "tries.glsl"
+#include "workgroup.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
 layout(push_constant) uniform Push { RejectionPush p; };

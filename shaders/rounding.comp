@@ -3,7 +3,7 @@
 // Scaling to the target and stochastic rounding (Algorithm 2, lines 12-14): N_T is floor(x) or
 // floor(x) + 1 with E[N_T] = x = scale * N-bar_T. Same stream and arithmetic (double, 53-bit
 // uniform) as the CPU backend's round_counts.
-#include "common.glsl"
+#include "workgroup.glsl"
 #include "grid.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
@@ -26,6 +26,6 @@ void main() {
     uint64_at(p.counts, i).v[0] = count;
     sum += count;
   }
-  sum = subgroupAdd(sum);
-  if (subgroupElect() && sum > 0ul) atomicAdd(totals.t.sample_count, sum);
+  sum = workgroup_add(sum);
+  if (gl_LocalInvocationIndex == 0u && sum > 0ul) atomicAdd(totals.t.sample_count, sum);
 }
