@@ -142,6 +142,11 @@ struct PlanPush {
   uint key0, key1;        // kPlanRejection: Philox key of the rounding stream
 };
 
+struct WritePush {
+  uint64_t samples;
+  uint64_t count;
+};
+
 struct RejectionPush {
   uint64_t triangles;
   uint64_t maps;

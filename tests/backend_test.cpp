@@ -1,5 +1,6 @@
 // The backend-neutral factory: present in every build of the library, with or without Vulkan.
 
+#include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -37,6 +38,14 @@ TEST(Backend, WithoutVulkanAutomaticIsTheCpuAndVulkanIsRefused) {
   } catch (const VulkanUnavailable& e) {
     EXPECT_NE(std::string(e.what()).find("LIGHTSAMPLER_VULKAN=OFF"), std::string::npos) << e.what();
   }
+}
+
+TEST(Backend, TheCpuWriteFloorIsATime) {
+  const double ms = sample_write_ms(Backend::cpu, {}, 1'000'000, 3);
+  EXPECT_TRUE(std::isfinite(ms) && ms > 0) << ms;
+  EXPECT_THROW(sample_write_ms(Backend::automatic, {}, 1000), std::invalid_argument);
+  EXPECT_THROW(sample_write_ms(Backend::cpu, {}, 1000, 0), std::invalid_argument);
+  if (!has_vulkan_backend()) EXPECT_THROW(sample_write_ms(Backend::vulkan, {}, 1000), VulkanUnavailable);
 }
 
 TEST(Backend, NamesAreTheCommandLines) {

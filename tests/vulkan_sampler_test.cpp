@@ -428,6 +428,12 @@ TEST_F(VulkanSampler, UpdatedMapChangesTheNextFrame) {
     ASSERT_GE(lightsampler::uv(mesh.view(), s).x, 0.5f);
 }
 
+TEST_F(VulkanSampler, TheWriteFloorIsAGpuTime) {
+  // 17 million samples: the kernel's grid-stride loop covers more than 65535 workgroups' worth.
+  const double ms = sample_write_ms(Backend::vulkan, {.vulkan = {.validation = true}}, 17'000'000, 2);
+  EXPECT_TRUE(std::isfinite(ms) && ms > 0) << ms;
+}
+
 TEST_F(VulkanSampler, ReportsTheDeviceAndPerPassTimes) {
   auto sampler = gpu(trs_test::quad(1, 1, 0, 0, 1, 1), {Map{{1.0f, 2.0f}, 2, 1}});
   EXPECT_EQ(sampler->backend(), Backend::vulkan);

@@ -1,13 +1,19 @@
 // Choosing a backend: Vulkan on a GPU where the library has it, the CPU otherwise.
 
+#include <algorithm>
 #include <cstdlib>
+#include <stdexcept>
+#include <vector>
 #include <string>
 
 #include "lightsampler/backend.h"
 
+#include "cpu/passes.h"
+
 #ifdef LIGHTSAMPLER_HAS_VULKAN
 #include "lightsampler/vulkan.h"
 #include "vulkan/context.h"
+#include "vulkan/write_floor.h"
 #endif
 
 namespace lightsampler {
@@ -45,11 +51,13 @@ std::unique_ptr<Sampler> make_backend(const MeshView& mesh, std::span<const Dens
 
 #else
 
+VulkanUnavailable no_vulkan_backend() {
+  return VulkanUnavailable("this build of lightsampler has no Vulkan backend (configured with LIGHTSAMPLER_VULKAN=OFF)");
+}
+
 std::unique_ptr<Sampler> make_backend(const MeshView& mesh, std::span<const DensityMapView> maps,
                                       const SamplerOptions& options) {
-  if (options.backend == Backend::vulkan)
-    throw VulkanUnavailable("this build of lightsampler has no Vulkan backend (configured with "
-                            "LIGHTSAMPLER_VULKAN=OFF)");
+  if (options.backend == Backend::vulkan) throw no_vulkan_backend();
   return make_cpu_sampler(mesh, maps, options.cpu);
 }
 
@@ -84,6 +92,25 @@ std::unique_ptr<Sampler> make_sampler(const MeshView& mesh, std::span<const Dens
                               [&](const MeshView& parts, std::span<const DensityMapView> m) {
                                 return make_backend(parts, m, options);
                               });
+}
+
+double sample_write_ms(Backend backend, const SamplerOptions& options, std::uint64_t count, int repeats) {
+  if (backend == Backend::automatic)
+    throw std::invalid_argument("sample_write_ms: name the backend (cpu or vulkan), not automatic");
+  if (repeats < 1) throw std::invalid_argument("sample_write_ms: repeats must be at least 1");
+  std::vector<double> ms;
+  if (backend == Backend::cpu) {
+    ms = cpu::sample_write_ms(options.cpu, count, repeats + 1);
+  } else {
+#ifdef LIGHTSAMPLER_HAS_VULKAN
+    ms = vk::sample_write_ms(options.vulkan, count, repeats + 1);
+#else
+    throw no_vulkan_backend();
+#endif
+  }
+  ms.erase(ms.begin());  // the untimed run: first touches of the memory
+  std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+  return ms[ms.size() / 2];
 }
 
 }  // namespace lightsampler

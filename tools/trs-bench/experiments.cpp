@@ -1,5 +1,8 @@
 #include "experiments.h"
 
+#include <map>
+#include <utility>
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -18,14 +21,43 @@ constexpr std::uint64_t kFirstSeed = 1;
 
 using lightsampler::Backend;
 
+lightsampler::SamplerOptions sampler_options(Backend backend, const ExperimentSettings& settings) {
+  return {.backend = backend,
+          .cpu = {settings.threads},
+          .vulkan = {.device = settings.vulkan_device},
+          .refinement = settings.refinement};
+}
+
 std::unique_ptr<Sampler> make_sampler(const Mesh& mesh, const DensityMap& map, Backend backend,
                                       const ExperimentSettings& settings) {
   const lightsampler::DensityMapView view = map.view();
-  return lightsampler::make_sampler(mesh.view(), {&view, 1},
-                                    {.backend = backend,
-                                     .cpu = {settings.threads},
-                                     .vulkan = {.device = settings.vulkan_device},
-                                     .refinement = settings.refinement});
+  return lightsampler::make_sampler(mesh.view(), {&view, 1}, sampler_options(backend, settings));
+}
+
+/// The floor under every frame: writing `target` samples on each backend the variants use, one
+/// row per backend and count. Returns the floor of each (backend, count).
+std::map<std::pair<Backend, double>, double> run_floors(const ExperimentSettings& settings, Recorder& recorder) {
+  recorder.begin_section("Floor: the time to write N samples (x floor = 1)");
+  std::map<std::pair<Backend, double>, double> floors;
+  for (const Variant& v : settings.variants)
+    for (double target : settings.counts) {
+      if (floors.count({v.backend, target})) continue;
+      const double ms = lightsampler::sample_write_ms(v.backend, sampler_options(v.backend, settings),
+                                                      std::uint64_t(target), settings.measure.repeats);
+      floors[{v.backend, target}] = ms;
+      CaseResult r;
+      r.experiment = "floor";
+      r.mesh = r.map = "-";
+      r.method = "write";
+      r.scan = "-";
+      r.target = target;
+      r.backend = lightsampler::to_string(v.backend);
+      r.engine = v.backend == Backend::vulkan ? "vk" : "cpu";
+      r.measured = Measurement{.runs = settings.measure.repeats, .samples = target, .total_ms = ms, .wall_ms = ms};
+      r.floor_ms = ms;
+      recorder.add(std::move(r));
+    }
+  return floors;
 }
 
 /// One sampler per backend the variants use, for one (mesh, map).
@@ -105,6 +137,7 @@ struct SeriesTime {
 
 void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& settings,
                              lightsampler::Frame& frame, Recorder& recorder) {
+  const auto floors = run_floors(settings, recorder);
   for (const Mesh& mesh : inputs.meshes) {
     recorder.begin_section("Sample count: " + mesh.name + ", " +
                            std::to_string(mesh.triangle_count()) + " triangles");
@@ -118,6 +151,7 @@ void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& set
           FrameRequest request = request_for(variant);
           request.target_count = target;
           CaseResult result = describe_case("sampling", mesh, map, sampler, request, variant.engine(), settings);
+          result.floor_ms = floors.at({variant.backend, target});
           const std::optional<double> estimate = series[k].estimate_ms(target);
           if (estimate && *estimate > settings.measure.budget_s * 1e3) {
             result.estimate_ms = *estimate;

@@ -50,7 +50,7 @@ const std::vector<Column> kColumns = {
     {"mesh", -6},    {"tris", 8},     {"map", -6},     {"engine", -10}, {"method", -6},
     {"scan", -9},    {"target", 6},   {"samples", 10}, {"accept", 7},
     {"count ms", 9}, {"round ms", 9}, {"scan ms", 9},  {"distr ms", 9},
-    {"real ms", 9},  {"total ms", 9}, {"Msmp/s", 8},   {"runs", 4}};
+    {"real ms", 9},  {"total ms", 9}, {"Msmp/s", 8},   {"runs", 4},     {"x floor", 7}};
 
 /// One table line: cells padded to their column (negative width: left-aligned); cells past the
 /// end of `cells` are left out, so a skipped case can end with a free-text note.
@@ -81,6 +81,7 @@ std::vector<std::string> table_cells(const CaseResult& r) {
   cells.push_back(format_ms(m.total_ms));
   cells.push_back(m.realized() ? format("%.3g", m.samples_per_s() * 1e-6) : "-");
   cells.push_back(std::to_string(m.runs));
+  cells.push_back(r.floor_ms ? format("%.3g", m.total_ms / *r.floor_ms) : "-");
   return cells;
 }
 
@@ -108,7 +109,7 @@ std::string csv_text(const std::vector<CaseResult>& results) {
       "experiment,mesh,triangles,map,map_size,method,scan,target,status,runs,samples,candidates,"
       "acceptance,exhausted";
   for (const auto& name : passes) text += "," + name + "_ms";
-  text += ",total_ms,wall_ms,samples_per_s,threads,backend,engine,device,estimate_ms,refine\n";
+  text += ",total_ms,wall_ms,samples_per_s,threads,backend,engine,device,estimate_ms,refine,floor_ms,floor_multiple\n";
   for (const auto& r : results) {
     text += r.experiment + "," + r.mesh + "," + std::to_string(r.triangles) + "," + r.map + "," +
             std::to_string(r.map_size) + "," + r.method + "," + r.scan + "," +
@@ -129,7 +130,9 @@ std::string csv_text(const std::vector<CaseResult>& results) {
     }
     text += format(",%u,", r.threads) + csv_quote(r.backend) + ',' + csv_quote(r.engine) + ',' +
             csv_quote(r.device) + ',';
-    text += (r.measured ? "" : format("%.6g", r.estimate_ms)) + format(",%g\n", r.refine);
+    text += (r.measured ? "" : format("%.6g", r.estimate_ms)) + format(",%g,", r.refine);
+    text += r.floor_ms ? format("%.6g,", *r.floor_ms) : ",";
+    text += r.floor_ms && r.measured ? format("%.6g\n", r.measured->total_ms / *r.floor_ms) : "\n";
   }
   return text;
 }

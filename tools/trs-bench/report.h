@@ -14,7 +14,8 @@
 namespace trs_bench {
 
 struct CaseResult {
-  /// "sampling" (time vs sample count) or "scan" (scan orders, no realization)
+  /// "sampling" (time vs sample count), "floor" (writing samples alone) or "scan" (scan orders,
+  /// no realization)
   std::string experiment;
   std::string mesh;
   std::uint64_t triangles = 0;
@@ -30,6 +31,7 @@ struct CaseResult {
   float refine = 0;  ///< the sampler's Refinement::min_acceptance (0: none)
   std::optional<Measurement> measured;  ///< empty: skipped
   double estimate_ms = 0;               ///< for a skipped case: its extrapolated frame time
+  std::optional<double> floor_ms;       ///< the time to write as many samples on the backend
 };
 
 class Recorder {

@@ -54,4 +54,11 @@ struct SamplerOptions {
 std::unique_ptr<Sampler> make_sampler(const MeshView& mesh, std::span<const DensityMapView> maps,
                                       const SamplerOptions& options = {});
 
+/// The floor under any frame of `count` samples on `backend` (cpu or vulkan, with `options`):
+/// the time to write that many samples, by a kernel that writes each to device memory (Vulkan,
+/// timed by GPU timestamps) or a parallel pass that writes them to host memory (CPU). The
+/// median of `repeats` runs after an untimed one, in milliseconds. Throws as make_sampler does
+/// when the backend cannot run, std::invalid_argument for Backend::automatic.
+double sample_write_ms(Backend backend, const SamplerOptions& options, std::uint64_t count, int repeats = 5);
+
 }  // namespace lightsampler

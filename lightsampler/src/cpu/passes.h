@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "core/density.h"
 #include "core/geometry.h"
@@ -57,5 +58,9 @@ RealizationResult rejection_sample(std::span<const core::TexelTriangle> triangle
 /// rejection sampling needs. Returns the max density.
 float rejection_distribution(std::span<const core::TriangleRecord> triangles,
                              std::span<const core::DensityMap> maps, Buffer<double>& area_cdf);
+
+/// The time of `runs` passes writing `count` samples to host memory with the backend's threads
+/// (the floor under realization), in milliseconds. Each pass writes every sample anew.
+std::vector<double> sample_write_ms(const CpuOptions& options, std::uint64_t count, int runs);
 
 }  // namespace lightsampler::cpu

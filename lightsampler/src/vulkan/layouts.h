@@ -14,6 +14,7 @@ static_assert(sizeof(Sample) == kSampleBytes && sizeof(lightsampler::Sample) == 
 static_assert(sizeof(FrameTotals) == 56 && offsetof(FrameTotals, sample_count) == 8 &&
               offsetof(FrameTotals, scan_counter) == 16 && offsetof(FrameTotals, cells) == 40 &&
               offsetof(FrameTotals, realized) == 48);
+static_assert(sizeof(WritePush) == 16);
 static_assert(sizeof(PlanPush) == 64 && offsetof(PlanPush, target) == 32 && offsetof(PlanPush, dispatches) == 48 &&
               offsetof(PlanPush, key1) == 60);
 static_assert(sizeof(CountingPush) == 72 && offsetof(CountingPush, triangle_count) == 64);
