@@ -121,6 +121,28 @@ std::vector<std::vector<std::tuple<float, float>>> samples_by_triangle(const Fra
   return v;
 }
 
+/// TRS: a triangle that both backends gave the same N_T and D_T^max has the same samples, bit for
+/// bit (same Philox streams, same texel reads). Returns how many triangles were compared.
+std::size_t expect_same_samples_where_counts_agree(const Frame& want, const Frame& got) {
+  const auto a = samples_by_triangle(want), b = samples_by_triangle(got);
+  std::size_t compared = 0;
+  for (std::size_t t = 0; t < a.size(); ++t) {
+    if (want.counts[t] != got.counts[t] || want.max_density[t] != got.max_density[t]) continue;
+    EXPECT_EQ(b[t], a[t]) << "triangle " << t;
+    ++compared;
+  }
+  return compared;
+}
+
+/// Plain rejection sampling: sample i is keyed by i, so both backends draw the same sample i
+/// (over the samples both drew).
+void expect_same_samples_in_order(const Frame& want, const Frame& got) {
+  for (std::size_t i = 0; i < std::min(want.samples.size(), got.samples.size()); ++i) {
+    const Sample &a = want.samples[i], &b = got.samples[i];
+    ASSERT_TRUE(a.triangle == b.triangle && a.b1 == b.b1 && a.b2 == b.b2) << "sample " << i;
+  }
+}
+
 }  // namespace
 
 TEST_F(VulkanSampler, CountsAgreeWithTheCpuInsideTheUnitSquare) {
@@ -224,14 +246,8 @@ TEST_F(VulkanSampler, SameSamplesAsTheCpuWhereTheCountsAgree) {
   const FrameRequest request{.seed = 5, .target_count = 100000};
   const Frame a = generate(*cpu(mesh, maps), request), b = generate(*gpu(mesh, maps), request);
   EXPECT_EQ(b.exhausted, 0u);
-  const auto sa = samples_by_triangle(a), sb = samples_by_triangle(b);
-  std::size_t compared = 0;
-  for (std::size_t t = 0; t < sa.size(); ++t) {
-    if (a.counts[t] != b.counts[t] || a.max_density[t] != b.max_density[t]) continue;
-    EXPECT_EQ(sa[t], sb[t]) << "triangle " << t;
-    ++compared;
-  }
-  EXPECT_GT(compared, sa.size() * 9 / 10) << "counts and bounds agree for most triangles";
+  EXPECT_GT(expect_same_samples_where_counts_agree(a, b), a.counts.size() * 9 / 10)
+      << "counts and bounds agree for most triangles";
 }
 
 TEST_F(VulkanSampler, WrapAndClampAgreeExactlyWithTheCpuFarBeyondTheUnitSquare) {
@@ -264,23 +280,14 @@ TEST_F(VulkanSampler, WrapAndClampAgreeExactlyWithTheCpuFarBeyondTheUnitSquare) 
             << "triangle " << t;
       }
       EXPECT_EQ(f.exhausted, 0u);
-      const auto want = samples_by_triangle(reference), got = samples_by_triangle(f);
-      std::size_t compared = 0;
-      for (std::size_t t = 0; t < want.size(); ++t) {
-        if (f.counts[t] != reference.counts[t]) continue;
-        ASSERT_EQ(got[t], want[t]) << "triangle " << t;
-        ++compared;
-      }
-      EXPECT_GT(compared, want.size() * 95 / 100) << "N_T agree for most triangles";
+      EXPECT_GT(expect_same_samples_where_counts_agree(reference, f), reference.counts.size() * 95 / 100)
+          << "N_T agree for most triangles";
     }
     // Plain rejection sampling reads the same texels through the same stream: the same samples.
     const FrameRequest rs{.seed = 9, .target_count = 2e4, .method = Method::rejection};
     const Frame want = generate(*cpu(mesh, maps), rs), got = generate(*sampler, rs);
     ASSERT_EQ(got.samples.size(), want.samples.size());
-    for (std::size_t i = 0; i < want.samples.size(); ++i) {
-      const Sample &a = want.samples[i], &b = got.samples[i];
-      ASSERT_TRUE(a.triangle == b.triangle && a.b1 == b.b1 && a.b2 == b.b2) << "rejection sample " << i;
-    }
+    expect_same_samples_in_order(want, got);
   }
 }
 
@@ -314,14 +321,7 @@ TEST_F(VulkanSampler, FramesWithoutATargetRealizeEverySample) {
     const Frame got = generate(*sampler, {.seed = 4});
     ASSERT_EQ(got.samples.size(), got.sample_count);
     EXPECT_NEAR(double(got.sample_count), want.expected_total, 5 * std::sqrt(want.expected_total));
-    const auto a = samples_by_triangle(want), b = samples_by_triangle(got);
-    std::size_t compared = 0;
-    for (std::size_t t = 0; t < a.size(); ++t) {
-      if (want.counts[t] != got.counts[t]) continue;
-      ASSERT_EQ(b[t], a[t]) << "triangle " << t;
-      ++compared;
-    }
-    EXPECT_GT(compared, a.size() * 9 / 10);
+    EXPECT_GT(expect_same_samples_where_counts_agree(want, got), want.counts.size() * 9 / 10);
   }
 }
 
@@ -336,10 +336,7 @@ TEST_F(VulkanSampler, RejectionSamplingWithoutATargetDrawsTheCpuSamples) {
   ASSERT_GT(want.sample_count, 1000u);
   EXPECT_LE(std::max(want.sample_count, got.sample_count) - std::min(want.sample_count, got.sample_count), 1u);
   ASSERT_EQ(got.samples.size(), got.sample_count);
-  for (std::size_t i = 0; i < std::min(want.samples.size(), got.samples.size()); ++i) {
-    const Sample &a = want.samples[i], &b = got.samples[i];
-    ASSERT_TRUE(a.triangle == b.triangle && a.b1 == b.b1 && a.b2 == b.b2) << "sample " << i;
-  }
+  expect_same_samples_in_order(want, got);
 }
 
 TEST_F(VulkanSampler, UnorderedScanIsAPermutation) {

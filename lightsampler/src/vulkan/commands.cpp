@@ -128,16 +128,19 @@ void Commands::dispatch(const ComputePipeline& p, const void* push, std::uint32_
   if (groups > limit)
     throw std::invalid_argument("dispatch of " + std::to_string(groups) + " workgroups; the device allows " +
                                 std::to_string(limit));
-  vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
-  if (push_size > 0) vkCmdPushConstants(cmd_, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size, push);
+  bind(p, push, push_size);
   vkCmdDispatch(cmd_, groups, 1, 1);
 }
 
 void Commands::dispatch_indirect(const ComputePipeline& p, const void* push, std::uint32_t push_size,
                                  const Buffer& args, VkDeviceSize offset) {
+  bind(p, push, push_size);
+  vkCmdDispatchIndirect(cmd_, args.handle(), offset);
+}
+
+void Commands::bind(const ComputePipeline& p, const void* push, std::uint32_t push_size) {
   vkCmdBindPipeline(cmd_, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
   if (push_size > 0) vkCmdPushConstants(cmd_, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size, push);
-  vkCmdDispatchIndirect(cmd_, args.handle(), offset);
 }
 
 void Commands::draw(const RasterPipeline& p, const void* push, std::uint32_t push_size, std::uint32_t width,

@@ -161,6 +161,7 @@ class Commands {
  private:
   friend class Context;
   Commands() = default;
+  void bind(const ComputePipeline& p, const void* push, std::uint32_t push_size);
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   std::vector<std::string> stamps_;
   Context* context_ = nullptr;

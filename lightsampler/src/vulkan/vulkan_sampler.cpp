@@ -100,6 +100,14 @@ class VulkanSampler final : public Sampler {
   }
 
  private:
+  /// A frame's commands, starting from zero totals.
+  Commands begin_frame_commands() {
+    Commands c = context_->begin();
+    c.fill(buffers_.totals, 0, sizeof(gpu::FrameTotals), 0);
+    c.barrier();
+    return c;
+  }
+
   /// Runs `c`, whose passes end with a barrier, and returns the frame's totals after it.
   gpu::FrameTotals submit(Commands& c, Frame& frame) {
     c.copy(buffers_.totals, 0, buffers_.totals_readback, 0, sizeof(gpu::FrameTotals));
@@ -253,9 +261,7 @@ class VulkanSampler final : public Sampler {
     const std::uint32_t n_tri = scene_.triangle_count();
     // Automatic: unordered, one packed atomic per subgroup (Section 5).
     frame.scan_used = core::choose_scan(request.scan, ScanOrder::unordered, n_tri, limit);
-    Commands c = context_->begin();
-    c.fill(buffers_.totals, 0, sizeof(gpu::FrameTotals), 0);
-    c.barrier();
+    Commands c = begin_frame_commands();
     record_counting(c, request, frame);
     const PhiloxKey rounding_key = stream_key(request.seed, Stream::rounding);
     const gpu::RoundingPush round{buffers_.expected.address(), buffers_.counts.address(), buffers_.totals.address(),
@@ -290,9 +296,7 @@ class VulkanSampler final : public Sampler {
   /// without a target), then N and realization sized on the device. Returns the frame's totals.
   gpu::FrameTotals run_rejection(const FrameRequest& request, Frame& frame, std::uint64_t capacity) {
     const std::uint32_t n_tri = scene_.triangle_count();
-    Commands c = context_->begin();
-    c.fill(buffers_.totals, 0, sizeof(gpu::FrameTotals), 0);
-    c.barrier();
+    Commands c = begin_frame_commands();
     if (!request.target_count) record_counting(c, request, frame);  // Algorithm 1 needs N
     for (std::size_t m = 0; m < scene_.host().maps().size(); ++m) {
       const std::uint32_t texels = std::uint32_t(scene_.host().maps()[m].texels.size());
@@ -318,8 +322,9 @@ class VulkanSampler final : public Sampler {
   }
 
   /// Realization sized on the device: the plan pass writes how many samples to realize (N, or
-  /// none when N exceeds `capacity`) and the workgroup counts of as many dispatches as `capacity` could need
-  /// under the device's workgroup-count limit; each dispatch then runs one invocation per sample.
+  /// none when N exceeds `capacity`) and the workgroup counts of as many dispatches as
+  /// `capacity` could need under the device's workgroup-count limit; each dispatch then runs one
+  /// invocation per sample.
   template <class Push>
   void record_realization(Commands& c, const vk::ComputePipeline& pipeline, Push push, gpu::PlanPush plan,
                           std::uint64_t capacity) {
@@ -327,7 +332,7 @@ class VulkanSampler final : public Sampler {
         std::uint64_t(context_->capabilities().max_workgroup_count_x) * gpu::kWorkgroupSize;
     const auto dispatches = std::uint32_t((capacity + per_dispatch - 1) / per_dispatch);
     const VkDeviceSize args_bytes = VkDeviceSize(dispatches) * 3 * sizeof(std::uint32_t);
-    if (!buffers_.dispatch_args || buffers_.dispatch_args.size() < args_bytes)  // an empty one has an address too
+    if (!buffers_.dispatch_args || buffers_.dispatch_args.size() < args_bytes)
       buffers_.dispatch_args = context_->create_buffer(args_bytes);
     plan.totals = buffers_.totals.address();
     plan.indirect = buffers_.dispatch_args.address();
