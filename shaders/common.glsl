@@ -89,6 +89,12 @@ uvec4 philox4x32(uvec4 c, uvec2 k) {
   return c;
 }
 
+// The candidate stream's counter (core::candidate_counter): (T, j, s) in 128 bits, collision-free for s < 2^56 and j < 2^40.
+uvec4 candidate_counter(uint triangle, uint64_t segment, uint64_t candidate) {
+  return uvec4(triangle, uint(candidate), uint(segment),
+               uint(segment >> 32) ^ (uint(candidate >> 32) << 24));
+}
+
 float uniform_float(uint bits) { return float(bits >> 8) * (1.0 / 16777216.0); }
 double uniform_double(uint bits) { return double(bits) * (1.0lf / 4294967296.0lf); }
 // Uniform double in [0, 1) with 53 random bits (core/frame_policy.h).

@@ -1,53 +1,66 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Realization (Algorithm 4): one thread per sample. Binary search in the (unordered) CDF,
-// inverse permutation, then candidates from Heitz's map accepted against D_T^max. Random
-// numbers keyed by (triangle, rank within the triangle, try), as in the CPU backend.
+// Realization (Algorithm 4) through the candidate stream: each subgroup takes chunks of
+// kSegmentSlots samples in turn and walks every segment that starts in its chunk (at most one
+// per triangle: core::for_each_segment), so small triangles share a subgroup and large ones
+// spread over many. Candidates from Heitz's map, accepted against D_T^max; the same samples as
+// the CPU backend's.
 #include "workgroup.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
 layout(push_constant) uniform Push { RealizationPush p; };
 
+// The triangle whose segment is being walked.
+uint walked_triangle;
+TexelTriangle walked_texels;
+DensityMap walked_map;
+float walked_bound;
+
+bool draw_candidate(uint64_t segment, uint64_t candidate, out Sample drawn) {
+  uvec4 u = philox4x32(candidate_counter(walked_triangle, segment, candidate), uvec2(p.key0, p.key1));
+  vec2 b = triangle_map(uniform_float(u.x), uniform_float(u.y));
+  vec2 point = texel_space_point(walked_texels, b);
+  drawn = Sample(walked_triangle, b.x, b.y);
+  return uniform_float(u.z) * walked_bound < point_density(walked_map, p.texels, point.x, point.y);
+}
+
+#include "candidate_stream.glsl"
+
+uint64_t cdf_at(uint position) { return uint64_at(p.cdf, position).v[0]; }
+
+// The first processing index whose inclusive CDF exceeds sample_index.
 uint processing_index(uint64_t sample_index) {
   uint lo = 0u, hi = p.triangle_count - 1u;
   while (lo < hi) {
     uint mid = lo + (hi - lo) / 2u;
-    if (uint64_at(p.cdf, mid).v[0] > sample_index) hi = mid; else lo = mid + 1u;
+    if (cdf_at(mid) > sample_index) hi = mid; else lo = mid + 1u;
   }
   return lo;
 }
 
-// One sample per invocation, no grid-stride loop around the rejection loop: Mesa's llvmpipe
-// (lavapipe) ends loops after about 65535 iterations with a counter that nested loops share, so
-// a long rejection loop would cut short the loop around it. Large counts take several dispatches
-// (`first`); on lavapipe the host also keeps max_tries well under that limit (device_max_tries).
 void main() {
   Totals totals = Totals(p.totals);
-  uint64_t i = p.first + uint64_t(gl_GlobalInvocationID.x);
-  uint64_t tries = 0ul, gave_up = 0ul;
-  if (i < totals.t.realized) {
-    uint slot = processing_index(i);
-    uint tri = Uints(p.inverse).v[slot];
-    uint64_t rank = i - (slot > 0u ? uint64_at(p.cdf, slot - 1u).v[0] : 0ul);
-    TexelTriangle t = Triangles(p.triangles).v[tri];
-    DensityMap map = Maps(p.maps).v[t.map];
-    float bound = uintBitsToFloat(Uints(p.max_density).v[tri]);
-    uvec2 key = uvec2(p.key0, p.key1);
-    vec2 b = vec2(0.0);
-    bool accepted = false;
-    uint attempt = 0u;
-    // A while loop with its flag set before it: a do-while left `accepted` wrong after the loop
-    // on lavapipe.
-    while (!accepted && attempt < p.max_tries) {
-      uvec4 u = philox4x32(uvec4(tri, uint(rank), uint(rank >> 32), attempt), key);
-      b = triangle_map(uniform_float(u.x), uniform_float(u.y));
-      vec2 point = texel_space_point(t, b);
-      ++attempt;
-      accepted = uniform_float(u.z) * bound < point_density(map, p.texels, point.x, point.y);
+  uint64_t n = totals.t.realized;
+  uint64_t chunks = (n + uint64_t(kSegmentSlots) - 1ul) / uint64_t(kSegmentSlots);
+  uint64_t stride = uint64_t(gl_NumWorkGroups.x) * uint64_t(gl_NumSubgroups);
+  WalkTally tally = WalkTally(0ul, 0ul);
+  // Every bound below is subgroup-uniform: the subgroup walks together.
+  for (uint64_t c = uint64_t(gl_WorkGroupID.x) * uint64_t(gl_NumSubgroups) + uint64_t(gl_SubgroupID); c < chunks;
+       c += stride) {
+    uint64_t lo = c * uint64_t(kSegmentSlots), hi = min(lo + uint64_t(kSegmentSlots), n);
+    for (uint position = processing_index(lo); position < p.triangle_count; ++position) {
+      uint64_t start = position > 0u ? cdf_at(position - 1u) : 0ul, end = cdf_at(position);
+      if (start >= hi) break;
+      uint64_t segment = start >= lo ? 0ul : (lo - start + uint64_t(kSegmentSlots) - 1ul) / uint64_t(kSegmentSlots);
+      uint64_t first = start + segment * uint64_t(kSegmentSlots);
+      if (first >= min(hi, end)) continue;
+      // N_T > 0, so the triangle has a map and a positive bound.
+      walked_triangle = Uints(p.inverse).v[position];
+      walked_texels = Triangles(p.triangles).v[walked_triangle];
+      walked_map = Maps(p.maps).v[walked_texels.map];
+      walked_bound = uintBitsToFloat(Uints(p.max_density).v[walked_triangle]);
+      walk_segment(p.samples, segment, first, uint(min(uint64_t(kSegmentSlots), end - first)), p.max_tries, tally);
     }
-    Samples(p.samples + i * uint64_t(kSampleBytes)).v[0] = Sample(tri, b.x, b.y);
-    tries = attempt;
-    gave_up = accepted ? 0ul : 1ul;
   }
-  count_tries(totals, tries, gave_up);
+  count_tries(totals, tally.candidates, tally.exhausted);
 }

@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Sizes realization on the device, so that a frame needs no host read-back: from N (written by
 // the rounding pass, or for plain rejection sampling computed here) and the sample buffer's
-// capacity, the number of samples to realize and the workgroup counts of each realization
+// capacity, the number of samples to realize and the workgroup count of the realization
 // dispatch (vkCmdDispatchIndirect). One invocation.
 #include "common.glsl"
 
@@ -28,12 +28,10 @@ void main() {
   // for a smaller total, may not hold); realize nothing.
   uint64_t n = totals.t.sample_count <= p.capacity ? totals.t.sample_count : 0ul;
   totals.t.realized = n;
-  for (uint k = 0u; k < p.dispatches; ++k) {
-    uint64_t first = uint64_t(k) * p.per_dispatch;
-    uint64_t count = n > first ? min(n - first, p.per_dispatch) : 0ul;
-    Uints args = Uints(p.indirect);
-    args.v[3u * k] = uint((count + uint64_t(kWorkgroupSize) - 1ul) / uint64_t(kWorkgroupSize));
-    args.v[3u * k + 1u] = 1u;
-    args.v[3u * k + 2u] = 1u;
-  }
+  uint64_t chunks = (n + uint64_t(kSegmentSlots) - 1ul) / uint64_t(kSegmentSlots);
+  uint64_t groups = (chunks + uint64_t(kChunksPerWorkgroup) - 1ul) / uint64_t(kChunksPerWorkgroup);
+  Uints args = Uints(p.indirect);
+  args.v[0] = uint(min(groups, uint64_t(p.max_workgroups)));
+  args.v[1] = 1u;
+  args.v[2] = 1u;
 }

@@ -1,11 +1,16 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Plain rejection sampling (Algorithm 1): triangle by area (binary search in the area CDF),
-// uniform point, accepted against the global bound. Same stream as the CPU backend.
+// Plain rejection sampling (Algorithm 1) through the candidate stream over the whole output:
+// each subgroup walks segments of kSegmentSlots samples in turn; a candidate picks its triangle
+// by area (binary search in the area CDF) and a uniform point on it, accepted against the global
+// bound. The same samples as the CPU backend's.
 #include "workgroup.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
 layout(push_constant) uniform Push { RejectionPush p; };
+
+float global_bound;
+double total_area;
 
 uint pick_triangle(double target) {
   Doubles cdf = Doubles(p.area_cdf);
@@ -17,31 +22,29 @@ uint pick_triangle(double target) {
   return lo;
 }
 
-// One sample per invocation, as in realization.comp (lavapipe's shared loop limiter).
+bool draw_candidate(uint64_t segment, uint64_t candidate, out Sample drawn) {
+  uvec4 u = philox4x32(candidate_counter(0u, segment, candidate), uvec2(p.key0, p.key1));
+  vec2 b = triangle_map(uniform_float(u.x), uniform_float(u.y));
+  uint tri = pick_triangle(uniform_double(u.w) * total_area);
+  drawn = Sample(tri, b.x, b.y);
+  return uniform_float(u.z) * global_bound <
+         texel_triangle_density(Triangles(p.triangles).v[tri], Maps(p.maps), p.texels, b);
+}
+
+#include "candidate_stream.glsl"
+
 void main() {
   Totals totals = Totals(p.totals);
-  uint64_t i = p.first + uint64_t(gl_GlobalInvocationID.x);
-  uint64_t tries = 0ul, gave_up = 0ul;
-  if (i < totals.t.realized) {
-    float bound = uintBitsToFloat(totals.t.max_density_bits);
-    double total_area = Doubles(p.area_cdf).v[p.triangle_count - 1u];
-    uvec2 key = uvec2(p.key0, p.key1);
-    Triangles triangles = Triangles(p.triangles);
-    Maps maps = Maps(p.maps);
-    uint tri = 0u;
-    vec2 b = vec2(0.0);
-    bool accepted = false;
-    uint attempt = 0u;
-    while (!accepted && attempt < p.max_tries) {
-      uvec4 u = philox4x32(uvec4(uint(i), uint(i >> 32), attempt, 0u), key);
-      tri = pick_triangle(uniform_double(u.x) * total_area);
-      b = triangle_map(uniform_float(u.y), uniform_float(u.z));
-      ++attempt;
-      accepted = uniform_float(u.w) * bound < texel_triangle_density(triangles.v[tri], maps, p.texels, b);
-    }
-    Samples(p.samples + i * uint64_t(kSampleBytes)).v[0] = Sample(tri, b.x, b.y);
-    tries = attempt;
-    gave_up = accepted ? 0ul : 1ul;
+  uint64_t n = totals.t.realized;
+  uint64_t segments = (n + uint64_t(kSegmentSlots) - 1ul) / uint64_t(kSegmentSlots);
+  uint64_t stride = uint64_t(gl_NumWorkGroups.x) * uint64_t(gl_NumSubgroups);
+  global_bound = uintBitsToFloat(totals.t.max_density_bits);
+  total_area = p.triangle_count > 0u ? Doubles(p.area_cdf).v[p.triangle_count - 1u] : 0.0lf;
+  WalkTally tally = WalkTally(0ul, 0ul);
+  for (uint64_t s = uint64_t(gl_WorkGroupID.x) * uint64_t(gl_NumSubgroups) + uint64_t(gl_SubgroupID); s < segments;
+       s += stride) {
+    uint64_t first = s * uint64_t(kSegmentSlots);
+    walk_segment(p.samples, s, first, uint(min(uint64_t(kSegmentSlots), n - first)), p.max_tries, tally);
   }
-  count_tries(totals, tries, gave_up);
+  count_tries(totals, tally.candidates, tally.exhausted);
 }

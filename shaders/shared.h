@@ -19,6 +19,9 @@ LS_CONST uint kWorkgroupSize = 256;
 // dispatch exceeds the 65535-workgroup limit whatever the element count.
 LS_CONST uint kMaxWorkgroups = 8192;
 LS_CONST uint kNoMap = 0xffffffffu;
+// Slots of a segment of the candidate stream (lightsampler/src/core/candidate_stream.h): part
+// of the definition of the samples, the same on every backend.
+LS_CONST uint kSegmentSlots = 256;
 // Candidate cells per invocation of the compute counting path.
 LS_CONST uint kCellsPerRun = 16;
 LS_CONST uint kAddressWrap = 0u;
@@ -121,7 +124,6 @@ struct RealizationPush {
   uint64_t inverse;
   uint64_t samples;
   uint64_t totals;
-  uint64_t first;     // sample of this dispatch's first invocation
   uint key0, key1;
   uint triangle_count;
   uint max_tries;
@@ -130,14 +132,18 @@ struct RealizationPush {
 LS_CONST uint kPlanTrs = 0u;        // N from the rounding pass
 LS_CONST uint kPlanRejection = 1u;  // N: the target (or N-bar) rounded, if anything can be drawn
 
+// Realization's workgroups take chunks of kSegmentSlots samples, one per subgroup at a time:
+// the plan launches one workgroup per this many chunks (subgroups of 32 lanes each take one),
+// up to the device's limit, and the workgroups stride over the rest.
+LS_CONST uint kChunksPerWorkgroup = 8;
+
 struct PlanPush {
   uint64_t totals;
-  uint64_t indirect;      // uint[3 * dispatches]: workgroup counts of the realization dispatches
+  uint64_t indirect;      // uint[3]: workgroup counts of the realization dispatch
   uint64_t capacity;      // samples the sample buffer holds
-  uint64_t per_dispatch;  // invocations of one dispatch at most
   double target;          // kPlanRejection: N_target; negative: N-bar
   double total_area;      // kPlanRejection: the mesh's world area
-  uint dispatches;
+  uint max_workgroups;    // the device's maxComputeWorkGroupCount[0]
   uint method;            // kPlanTrs or kPlanRejection
   uint key0, key1;        // kPlanRejection: Philox key of the rounding stream
 };
@@ -154,7 +160,6 @@ struct RejectionPush {
   uint64_t area_cdf;  // double[T], inclusive CDF of world areas
   uint64_t samples;
   uint64_t totals;
-  uint64_t first;     // realization: sample of this dispatch's first invocation
   uint key0, key1;
   uint triangle_count;
   uint max_tries;

@@ -3,6 +3,7 @@
 // device into a failure instead of a skip.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <random>
@@ -134,8 +135,8 @@ std::size_t expect_same_samples_where_counts_agree(const Frame& want, const Fram
   return compared;
 }
 
-/// Plain rejection sampling: sample i is keyed by i, so both backends draw the same sample i
-/// (over the samples both drew).
+/// Plain rejection sampling: sample i is slot i of the output's candidate stream, so both
+/// backends draw the same sample i (over the samples both drew).
 void expect_same_samples_in_order(const Frame& want, const Frame& got) {
   for (std::size_t i = 0; i < std::min(want.samples.size(), got.samples.size()); ++i) {
     const Sample &a = want.samples[i], &b = got.samples[i];
@@ -248,6 +249,60 @@ TEST_F(VulkanSampler, SameSamplesAsTheCpuWhereTheCountsAgree) {
   EXPECT_EQ(b.exhausted, 0u);
   EXPECT_GT(expect_same_samples_where_counts_agree(a, b), a.counts.size() * 9 / 10)
       << "counts and bounds agree for most triangles";
+}
+
+/// Quads over texel-aligned UV rectangles of a 16 x 16 map: every overlap is a dyadic fraction,
+/// so both backends count them exactly and give every triangle the same N_T and D_T^max.
+Mesh texel_aligned_quads(int count, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  Mesh m;
+  for (int q = 0; q < count; ++q) {
+    const float u0 = float(rng() % 12) / 16, v0 = float(rng() % 12) / 16;
+    const float u1 = u0 + float(1 + rng() % 4) / 16, v1 = v0 + float(1 + rng() % 4) / 16;
+    const float x = float(q), p[4][3] = {{x, 0, 0}, {x + 1, 0, 0}, {x + 1, 1, 0}, {x, 1, 0}};
+    const float uv[4][2] = {{u0, v0}, {u1, v0}, {u1, v1}, {u0, v1}};
+    for (const auto& corners : {std::array{0, 1, 2}, std::array{0, 2, 3}}) {
+      float tp[3][3], tuv[3][2];
+      for (int k = 0; k < 3; ++k) {
+        std::copy_n(p[corners[k]], 3, tp[k]);
+        std::copy_n(uv[corners[k]], 2, tuv[k]);
+      }
+      m.add_triangle(tp, tuv);
+    }
+  }
+  return m;
+}
+
+TEST_F(VulkanSampler, CandidateStreamIsTheCpusSampleForSample) {
+  // The device's subgroups walk each segment together; the CPU walks it 16 candidates at a time.
+  // Where both backends give every triangle the same N_T and D_T^max, the ordered scan puts
+  // every sample in the same slot: the outputs are equal in order, with the same candidate and
+  // exhausted counts, also when few tries per slot exhaust slots in the middle of a subgroup's
+  // round and carry rejections from one round to the next. A sparse map keeps acceptance low.
+  const Mesh mesh = texel_aligned_quads(40, 41);
+  const std::vector<Map> maps = {trs_test::random_map(16, 16, 0.7, 42)};
+  auto sampler = gpu(mesh, maps);
+  for (std::uint32_t max_tries : {1u, 2u, 5u, 1u << 28}) {
+    SCOPED_TRACE(max_tries);
+    for (Method method : {Method::trs, Method::rejection}) {
+      SCOPED_TRACE(to_string(method));
+      const FrameRequest request{
+          .seed = 3, .target_count = 50000, .method = method, .scan = ScanOrder::ordered, .max_tries = max_tries};
+      const Frame want = generate(*cpu(mesh, maps), request), got = generate(*sampler, request);
+      if (method == Method::trs) {
+        ASSERT_EQ(got.counts.size(), want.counts.size());
+        for (std::size_t t = 0; t < want.counts.size(); ++t) {
+          ASSERT_EQ(got.counts[t], want.counts[t]) << "triangle " << t;
+          ASSERT_EQ(got.max_density[t], want.max_density[t]) << "triangle " << t;
+        }
+      }
+      ASSERT_EQ(got.samples.size(), want.samples.size());
+      expect_same_samples_in_order(want, got);
+      EXPECT_EQ(got.candidates, want.candidates);
+      EXPECT_EQ(got.exhausted, want.exhausted);
+      if (max_tries <= 2) EXPECT_GT(want.exhausted, 0u);
+    }
+  }
 }
 
 TEST_F(VulkanSampler, WrapAndClampAgreeExactlyWithTheCpuFarBeyondTheUnitSquare) {

@@ -14,11 +14,14 @@ class Buffer {
   static_assert(std::is_trivially_copyable_v<T>);
 
  public:
-  /// Sets the size; contents are unspecified where the buffer grew.
+  /// Sets the size; contents are unspecified where the buffer grew. Growth leaves 1/64 of room:
+  /// a frame's sample count varies from frame to frame (stochastic rounding), and a buffer sized
+  /// exactly would be reallocated, and its pages faulted in again, whenever it grows a little.
   void resize(std::size_t n) {
     if (n > capacity_) {
-      data_.reset(new T[n]);
-      capacity_ = n;
+      const std::size_t capacity = n + n / 64;
+      data_.reset(new T[capacity]);
+      capacity_ = capacity;
     }
     size_ = n;
   }

@@ -28,9 +28,9 @@ inline PhiloxCounter philox4x32(PhiloxCounter c, PhiloxKey k) {
 
 /// Independent streams drawn from one user seed.
 enum class Stream : std::uint32_t {
-  realization = 1,  ///< TRS candidates, counter (triangle, rank lo, rank hi, try)
+  realization = 1,  ///< TRS candidates: candidate j of segment s of triangle T
   rounding = 2,     ///< stochastic rounding, counter (triangle, 0, 0, 0)
-  rejection = 3,    ///< plain rejection sampling, counter (sample lo, sample hi, try, 0)
+  rejection = 3,    ///< plain rejection sampling: candidate j of segment s of the output
 };
 
 /// SplitMix64 finaliser: spreads a seed over all 64 bits.

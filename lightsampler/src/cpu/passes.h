@@ -37,10 +37,10 @@ struct RealizationResult {
   std::uint64_t exhausted;
 };
 
-/// Realization pass (Algorithm 4): sample i lies on triangle sigma^-1[p] where p is the first
-/// processing index with cdf[p] > i; candidates from Heitz's map are accepted against D_T^max.
-/// The random numbers of a sample are keyed by (triangle, rank of the sample within its
-/// triangle, try), so the set of samples does not depend on scheduling or scan order.
+/// Realization pass (Algorithm 4): the N_T slots of triangle sigma^-1[p] start at cdf[p - 1];
+/// candidates from Heitz's map, accepted against D_T^max, fill them through the candidate stream
+/// (core/candidate_stream.h), keyed by triangle, so a triangle's samples do not depend on
+/// scheduling or scan order.
 RealizationResult realize(std::span<const core::TexelTriangle> triangles,
                           std::span<const core::DensityMap> maps, std::span<const float> max_density,
                           std::span<const std::uint64_t> cdf,
@@ -48,7 +48,8 @@ RealizationResult realize(std::span<const core::TexelTriangle> triangles,
                           std::uint32_t max_tries, Buffer<Sample>& samples);
 
 /// Plain rejection sampling (Algorithm 1): triangles by area, uniform points, accepted against
-/// the global max density. `area_cdf` is the inclusive CDF of triangle areas.
+/// the global max density, through the candidate stream over the whole output. `area_cdf` is
+/// the inclusive CDF of triangle areas.
 RealizationResult rejection_sample(std::span<const core::TexelTriangle> triangles,
                                    std::span<const core::DensityMap> maps, std::span<const double> area_cdf,
                                    float global_max_density, std::uint64_t sample_count,

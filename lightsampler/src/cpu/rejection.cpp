@@ -7,7 +7,7 @@
 #include <tbb/parallel_scan.h>
 
 #include "cpu/passes.h"
-#include "lightsampler/triangle_map.h"
+#include "cpu/candidates.h"
 
 namespace lightsampler::cpu {
 
@@ -48,34 +48,34 @@ RealizationResult rejection_sample(std::span<const core::TexelTriangle> triangle
   if (sample_count == 0) return {0, 0};
   const double total_area = area_cdf.back();
   const std::size_t last = area_cdf.size() - 1;
+  // The whole output is one run of segments, as if one triangle held every sample.
+  const std::uint64_t output[1] = {sample_count};
   std::atomic<std::uint64_t> candidates{0}, exhausted{0};
   tbb::parallel_for(
       // Small blocks: a sample may try hundreds of candidates, and small counts must still
       // spread over every thread.
       tbb::blocked_range<std::uint64_t>(0, sample_count, 1 << 10),
       [&](const tbb::blocked_range<std::uint64_t>& r) {
-        std::uint64_t tries = 0, gave_up = 0;
-        for (std::uint64_t i = r.begin(); i != r.end(); ++i) {
-          for (std::uint32_t attempt = 0;;) {
-            const PhiloxCounter u =
-                philox4x32({std::uint32_t(i), std::uint32_t(i >> 32), attempt, 0}, key);
-            const double pick = uniform_double(u[0]) * total_area;
-            const auto tri = std::uint32_t(std::min<std::size_t>(
-                std::upper_bound(area_cdf.begin(), area_cdf.end(), pick) - area_cdf.begin(), last));
-            const Barycentrics b = triangle_map(uniform_float(u[1]), uniform_float(u[2]));
-            const float d = core::texel_triangle_density(triangles[tri], maps, b.b1, b.b2);
-            ++attempt;
-            const bool accepted = uniform_float(u[3]) * global_max_density < d;
-            if (accepted || attempt == max_tries) {
-              samples[i] = {tri, b.b1, b.b2};
-              gave_up += accepted ? 0 : 1;
-              tries += attempt;
-              break;
+        WalkTally tally;
+        core::for_each_segment(output, r.begin(), r.end(), [&](const core::SegmentRun& run) {
+          CandidateBatch batch;
+          auto draw = [&](std::uint64_t first, Sample(&out)[kLanes]) {
+            std::uint32_t accepted = 0;
+            draw_candidates(0, run.segment, first, key, batch);
+            for (int l = 0; l < kLanes; ++l) {
+              const double pick = batch.pick[l] * total_area;
+              const auto tri = std::uint32_t(std::min<std::size_t>(
+                  std::upper_bound(area_cdf.begin(), area_cdf.end(), pick) - area_cdf.begin(), last));
+              const float d = core::texel_triangle_density(triangles[tri], maps, batch.b1[l], batch.b2[l]);
+              accepted |= std::uint32_t(batch.accept[l] * global_max_density < d) << l;
+              out[l] = {tri, batch.b1[l], batch.b2[l]};
             }
-          }
-        }
-        candidates.fetch_add(tries, std::memory_order_relaxed);
-        exhausted.fetch_add(gave_up, std::memory_order_relaxed);
+            return accepted;
+          };
+          walk_segment(run, max_tries, samples.data() + run.first, draw, tally);
+        });
+        candidates.fetch_add(tally.candidates, std::memory_order_relaxed);
+        exhausted.fetch_add(tally.exhausted, std::memory_order_relaxed);
       });
   return {candidates.load(), exhausted.load()};
 }

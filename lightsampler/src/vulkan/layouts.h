@@ -15,15 +15,15 @@ static_assert(sizeof(FrameTotals) == 56 && offsetof(FrameTotals, sample_count) =
               offsetof(FrameTotals, scan_counter) == 16 && offsetof(FrameTotals, cells) == 40 &&
               offsetof(FrameTotals, realized) == 48);
 static_assert(sizeof(WritePush) == 16);
-static_assert(sizeof(PlanPush) == 64 && offsetof(PlanPush, target) == 32 && offsetof(PlanPush, dispatches) == 48 &&
-              offsetof(PlanPush, key1) == 60);
+static_assert(sizeof(PlanPush) == 56 && offsetof(PlanPush, target) == 24 && offsetof(PlanPush, max_workgroups) == 40 &&
+              offsetof(PlanPush, key1) == 52);
 static_assert(sizeof(CountingPush) == 72 && offsetof(CountingPush, triangle_count) == 64);
 static_assert(sizeof(RasterPush) == 72 && offsetof(RasterPush, origin_x) == 48 && offsetof(RasterPush, map) == 64);
 static_assert(sizeof(RoundingPush) == 48 && offsetof(RoundingPush, target) == 24 && offsetof(RoundingPush, key0) == 32);
 static_assert(sizeof(ScanPush) == 56 && offsetof(ScanPush, sum_bits) == 48);
-static_assert(sizeof(RealizationPush) == 88 && offsetof(RealizationPush, first) == 64 && offsetof(RealizationPush, key0) == 72);
-static_assert(sizeof(RejectionPush) == 80 && offsetof(RejectionPush, first) == 48 &&
-              offsetof(RejectionPush, key0) == 56 && offsetof(RejectionPush, map) == 76);
+static_assert(sizeof(RealizationPush) == 80 && offsetof(RealizationPush, key0) == 64 &&
+              offsetof(RealizationPush, max_tries) == 76);
+static_assert(sizeof(RejectionPush) == 72 && offsetof(RejectionPush, key0) == 48 && offsetof(RejectionPush, map) == 68);
 // Vulkan guarantees 128 bytes of push constants.
 static_assert(sizeof(RealizationPush) <= 128 && sizeof(RejectionPush) <= 128);
 

@@ -36,11 +36,12 @@ using vk::workgroups_for;
 // Viewport tile of the raster counting path, in texels (within every device's limits).
 constexpr std::int64_t kTile = 4096;
 
-/// Tries a realization invocation may make on this device. Mesa's llvmpipe (lavapipe) ends shader
-/// loops after about 65535 iterations (a counter shared by the loops of a shader), and then
-/// lanes of the same SIMD group come out wrong. Measured: the GPU's samples and exhausted count
-/// equal the CPU backend's up to 60000 tries, not at 65534. There a sample stops at 2^15 tries
-/// and, if still rejected, is counted in Frame::exhausted like any sample reaching max_tries.
+/// Tries per slot that realization may make on this device. Mesa's llvmpipe (lavapipe) ends
+/// shader loops after about 65535 iterations (a counter shared by the loops of a shader), and
+/// then lanes of the same SIMD group come out wrong. A subgroup walks a chunk's segments in
+/// rounds of one candidate per lane, so a chunk stays within that limit while its slots need
+/// fewer than about 65535 rounds in all; there a slot stops at 2^15 tries and, if still
+/// rejected, is counted in Frame::exhausted like any slot reaching max_tries.
 std::uint32_t device_max_tries(const std::string& device, std::uint32_t requested) {
   constexpr std::uint32_t kLlvmpipeMaxTries = 1u << 15;
   if (device.find("llvmpipe") != std::string::npos) return std::min(requested, kLlvmpipeMaxTries);
@@ -284,7 +285,7 @@ class VulkanSampler final : public Sampler {
       const gpu::RealizationPush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
                                       buffers_.max_density.address(), buffers_.cdf.address(),
                                       trs_inverse(frame)->address(), buffers_.samples.address(),
-                                      buffers_.totals.address(), 0, key[0], key[1], n_tri,
+                                      buffers_.totals.address(), key[0], key[1], n_tri,
                                       device_max_tries(context_->device_name(), request.max_tries)};
       record_realization(c, pipelines_.realization, push, {.method = gpu::kPlanTrs}, capacity);
       c.timestamp(to_string(Pass::realization));
@@ -301,7 +302,7 @@ class VulkanSampler final : public Sampler {
     for (std::size_t m = 0; m < scene_.host().maps().size(); ++m) {
       const std::uint32_t texels = std::uint32_t(scene_.host().maps()[m].texels.size());
       const gpu::RejectionPush push{0, scene_.map_records(), scene_.texels(), 0, 0, buffers_.totals.address(),
-                                    0, 0, 0, n_tri, 0, texels, std::uint32_t(m)};
+                                    0, 0, n_tri, 0, texels, std::uint32_t(m)};
       c.dispatch(pipelines_.rejection_distribution, &push, sizeof push, workgroups_for(texels));
     }
     c.barrier();
@@ -309,7 +310,7 @@ class VulkanSampler final : public Sampler {
     const PhiloxKey key = stream_key(request.seed, Stream::rejection);
     const PhiloxKey rounding_key = stream_key(request.seed, Stream::rounding);
     const gpu::RejectionPush push{scene_.triangles(), scene_.map_records(), scene_.texels(), scene_.area_cdf(),
-                                  buffers_.samples.address(), buffers_.totals.address(), 0, key[0], key[1], n_tri,
+                                  buffers_.samples.address(), buffers_.totals.address(), key[0], key[1], n_tri,
                                   device_max_tries(context_->device_name(), request.max_tries), 0, 0};
     const gpu::PlanPush plan{.target = request.target_count ? *request.target_count : -1.0,
                              .total_area = n_tri > 0 ? scene_.total_area() : 0.0,
@@ -322,29 +323,20 @@ class VulkanSampler final : public Sampler {
   }
 
   /// Realization sized on the device: the plan pass writes how many samples to realize (N, or
-  /// none when N exceeds `capacity`) and the workgroup counts of as many dispatches as
-  /// `capacity` could need under the device's workgroup-count limit; each dispatch then runs one
-  /// invocation per sample.
+  /// none when N exceeds `capacity`) and the workgroup count of the one realization dispatch,
+  /// whose subgroups then stride over the chunks of samples.
   template <class Push>
-  void record_realization(Commands& c, const vk::ComputePipeline& pipeline, Push push, gpu::PlanPush plan,
+  void record_realization(Commands& c, const vk::ComputePipeline& pipeline, const Push& push, gpu::PlanPush plan,
                           std::uint64_t capacity) {
-    const std::uint64_t per_dispatch =
-        std::uint64_t(context_->capabilities().max_workgroup_count_x) * gpu::kWorkgroupSize;
-    const auto dispatches = std::uint32_t((capacity + per_dispatch - 1) / per_dispatch);
-    const VkDeviceSize args_bytes = VkDeviceSize(dispatches) * 3 * sizeof(std::uint32_t);
-    if (!buffers_.dispatch_args || buffers_.dispatch_args.size() < args_bytes)
-      buffers_.dispatch_args = context_->create_buffer(args_bytes);
+    constexpr VkDeviceSize kArgsBytes = 3 * sizeof(std::uint32_t);
+    if (!buffers_.dispatch_args) buffers_.dispatch_args = context_->create_buffer(kArgsBytes);
     plan.totals = buffers_.totals.address();
     plan.indirect = buffers_.dispatch_args.address();
     plan.capacity = capacity;
-    plan.per_dispatch = per_dispatch;
-    plan.dispatches = dispatches;
+    plan.max_workgroups = context_->capabilities().max_workgroup_count_x;
     c.dispatch(pipelines_.realization_plan, &plan, sizeof plan, 1);
     c.barrier();
-    for (std::uint32_t k = 0; k < dispatches; ++k) {
-      push.first = std::uint64_t(k) * per_dispatch;
-      c.dispatch_indirect(pipeline, &push, sizeof push, buffers_.dispatch_args, VkDeviceSize(k) * 3 * sizeof(std::uint32_t));
-    }
+    c.dispatch_indirect(pipeline, &push, sizeof push, buffers_.dispatch_args, 0);
     c.barrier();
   }
 

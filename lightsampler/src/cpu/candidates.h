@@ -1,0 +1,52 @@
+#pragma once
+// Candidates of the candidate stream (core/candidate_stream.h), drawn kLanes at a time in vector
+// registers: Philox, the uniforms and Heitz's map are the same arithmetic as the scalar
+// lightsampler::philox4x32, uniform_float and triangle_map, lane by lane, so every candidate is
+// bit for bit the one the GPU draws.
+
+#include <cstdint>
+
+#include "core/candidate_stream.h"
+#include "lightsampler/random.h"
+#include "lightsampler/sample.h"
+
+namespace lightsampler::cpu {
+
+inline constexpr int kLanes = 16;
+static_assert(kLanes <= 32, "a mask of accepted candidates is 32 bits");
+
+/// Candidates first .. first + kLanes - 1 of one segment. Philox output words 0 and 1 give the
+/// barycentrics, word 2 the uniform that decides acceptance, word 3 (as a double in [0, 1)) the
+/// position in the area CDF where plain rejection sampling picks the triangle.
+struct CandidateBatch {
+  alignas(64) float b1[kLanes];
+  alignas(64) float b2[kLanes];
+  alignas(64) float accept[kLanes];
+  alignas(64) double pick[kLanes];
+};
+
+void draw_candidates(std::uint32_t triangle, std::uint64_t segment, std::uint64_t first, PhiloxKey key,
+                     CandidateBatch& out);
+
+/// Candidates and samples of a walk, summed over segments.
+struct WalkTally {
+  std::uint64_t candidates = 0;
+  std::uint64_t exhausted = 0;
+};
+
+/// Fills the slots of one segment, out[0 .. run.slots), from its candidate stream:
+/// draw(first, candidates) gives candidates first .. first + kLanes - 1 as samples, and returns a
+/// mask of the accepted ones (bit l for candidate first + l). All kLanes are judged before any
+/// fills a slot, so that their texel reads overlap; those after the last slot is filled are not
+/// counted.
+template <class Draw>
+void walk_segment(const core::SegmentRun& run, std::uint32_t max_tries, Sample* out, Draw&& draw, WalkTally& tally) {
+  core::SegmentFill fill(run.slots, max_tries);
+  Sample candidates[kLanes];
+  for (std::uint64_t first = 0; !fill.done(); first += kLanes)
+    fill.take(draw(first, candidates), kLanes, [&](int l, std::uint64_t slot) { out[slot] = candidates[l]; });
+  tally.candidates += fill.tries();
+  tally.exhausted += fill.exhausted();
+}
+
+}  // namespace lightsampler::cpu

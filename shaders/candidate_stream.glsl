@@ -1,0 +1,49 @@
+// The candidate stream (lightsampler/src/core/candidate_stream.h), walked by a subgroup: the
+// lanes draw consecutive candidates of one segment together, and prefix counts over the lanes
+// assign the slots, so no lane waits for another's rejection loop.
+//
+// The including shader defines, before including this file:
+//   bool draw_candidate(uint64_t segment, uint64_t candidate, out Sample drawn)
+// which returns whether candidate `candidate` of segment `segment` is accepted.
+#ifndef LIGHTSAMPLER_CANDIDATE_STREAM_GLSL
+#define LIGHTSAMPLER_CANDIDATE_STREAM_GLSL
+
+#include "common.glsl"
+
+// Candidate and slot tallies of one invocation, summed over the segments it walks.
+struct WalkTally {
+  uint64_t candidates;
+  uint64_t exhausted;
+};
+
+// Fills `slots` slots of segment `segment`, samples `first` on of the buffer at `samples`. Call with the whole subgroup,
+// every argument subgroup-uniform (the loop's trip count is). Each lane draws candidate
+// j + lane; a candidate fills a slot when accepted, or when it is the max_tries-th rejection in
+// a row (counted across rounds by `rejections`), as core::SegmentFill::take.
+void walk_segment(uint64_t samples, uint64_t segment, uint64_t first, uint slots, uint max_tries,
+                  inout WalkTally tally) {
+  // Lanes numbered among the active ones, in invocation order (the order of the scans below).
+  uint lane = subgroupExclusiveAdd(1u);
+  uint width = subgroupAdd(1u);
+  uint filled = 0u;
+  uint64_t rejections = 0ul;  // rejections in a row before this round, modulo max_tries
+  for (uint64_t j = 0ul; filled < slots; j += uint64_t(width)) {
+    Sample candidate;
+    bool accepted = draw_candidate(segment, j + uint64_t(lane), candidate);
+    // Rejections in a row up to and including this lane: since the last accepted lane, or
+    // since the round began plus those carried in.
+    int last_accepted = subgroupInclusiveMax(accepted ? int(lane) : -1);
+    uint64_t run = last_accepted >= 0 ? uint64_t(lane - uint(last_accepted))
+                                      : rejections + uint64_t(lane) + 1ul;
+    bool fills = accepted || run % uint64_t(max_tries) == 0ul;
+    uint before = subgroupExclusiveAdd(fills ? 1u : 0u);
+    bool drawn = before < slots - filled;  // the segment was not yet full at this candidate
+    if (fills && drawn) Samples(samples + (first + uint64_t(filled + before)) * uint64_t(kSampleBytes)).v[0] = candidate;
+    tally.candidates += drawn ? 1ul : 0ul;
+    tally.exhausted += fills && drawn && !accepted ? 1ul : 0ul;
+    filled += min(subgroupAdd(fills ? 1u : 0u), slots - filled);
+    rejections = subgroupMax(lane == width - 1u ? run % uint64_t(max_tries) : 0ul);
+  }
+}
+
+#endif

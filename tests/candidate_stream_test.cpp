@@ -1,0 +1,211 @@
+// The candidate stream (core/candidate_stream.h): its segments cover the output once, its
+// batched fill rule is the one-at-a-time rule, its vector candidates are the scalar ones, and the
+// CPU passes give exactly the samples that the stream's definition, walked one candidate at a
+// time, gives.
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "core/candidate_stream.h"
+#include "cpu/candidates.h"
+#include "cpu/passes.h"
+#include "lightsampler/triangle_map.h"
+#include "sampler_fixtures.h"
+
+using namespace lightsampler;
+using trs_test::Map;
+using trs_test::Mesh;
+
+namespace {
+
+/// Candidate j of segment s of triangle T, drawn as the definition says, one at a time.
+struct ScalarCandidate {
+  Barycentrics b;
+  float accept;
+  double pick;
+};
+ScalarCandidate scalar_candidate(std::uint32_t tri, std::uint64_t segment, std::uint64_t j, PhiloxKey key) {
+  const PhiloxCounter u = philox4x32(core::candidate_counter(tri, segment, j), key);
+  return {triangle_map(uniform_float(u[0]), uniform_float(u[1])), uniform_float(u[2]), uniform_double(u[3])};
+}
+
+/// Realization as the stream's definition states it: each triangle's segments in turn, each
+/// walked one candidate at a time.
+cpu::RealizationResult reference_realize(std::span<const core::TexelTriangle> tris, const core::DensityMap& map,
+                                         std::span<const float> max_density, std::span<const std::uint64_t> cdf,
+                                         std::span<const std::uint32_t> inverse, PhiloxKey key,
+                                         std::uint32_t max_tries, std::vector<Sample>& out) {
+  cpu::RealizationResult r{0, 0};
+  out.assign(cdf.empty() ? 0 : cdf.back(), Sample{});
+  for (std::size_t p = 0; p < cdf.size(); ++p) {
+    const std::uint32_t tri = inverse[p];
+    const std::uint64_t start = p == 0 ? 0 : cdf[p - 1];
+    for (std::uint64_t s = 0; start + s * core::kSegmentSlots < cdf[p]; ++s) {
+      const std::uint64_t first = start + s * core::kSegmentSlots;
+      core::SegmentFill fill(std::min(core::kSegmentSlots, cdf[p] - first), max_tries);
+      for (std::uint64_t j = 0; !fill.done(); ++j) {
+        const ScalarCandidate c = scalar_candidate(tri, s, j, key);
+        const auto [x, y] = core::texel_space_point(tris[tri], c.b.b1, c.b.b2);
+        if (fill.take(c.accept * max_density[tri] < core::point_density(map, x, y)))
+          out[first + fill.filled() - 1] = {tri, c.b.b1, c.b.b2};
+      }
+      r.candidates += fill.tries();
+      r.exhausted += fill.exhausted();
+    }
+  }
+  return r;
+}
+
+std::vector<core::TexelTriangle> texel_triangles(const std::vector<core::TriangleRecord>& records,
+                                                 const core::DensityMap& map) {
+  std::vector<core::TexelTriangle> out;
+  for (const core::TriangleRecord& r : records) out.push_back(core::make_texel_triangle(r, {&map, 1}));
+  return out;
+}
+
+void expect_same_samples(std::span<const Sample> got, std::span<const Sample> want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    ASSERT_EQ(got[i].triangle, want[i].triangle) << "sample " << i;
+    ASSERT_EQ(got[i].b1, want[i].b1) << "sample " << i;
+    ASSERT_EQ(got[i].b2, want[i].b2) << "sample " << i;
+  }
+}
+
+}  // namespace
+
+TEST(CandidateStream, SegmentsStartingInDisjointRangesCoverEverySlotOnce) {
+  // Counts with zeros, ones, and several segments' worth; ranges of every size cutting them.
+  std::mt19937_64 rng(3);
+  std::vector<std::uint64_t> counts(300), cdf;
+  std::uint64_t total = 0;
+  for (std::uint64_t& c : counts) {
+    const int kind = int(rng() % 4);
+    c = kind == 0 ? 0 : kind == 1 ? 1 + rng() % 3 : kind == 2 ? rng() % 300 : rng() % 2000;
+    cdf.push_back(total += c);
+  }
+  for (std::uint64_t range : {1ull, 7ull, 256ull, 1000ull, 1ull << 20}) {
+    std::vector<int> covered(total, 0);
+    for (std::uint64_t lo = 0; lo < total; lo += range)
+      core::for_each_segment(cdf, lo, std::min(lo + range, total), [&](const core::SegmentRun& run) {
+        const std::uint64_t start = run.position == 0 ? 0 : cdf[run.position - 1];
+        EXPECT_EQ(run.first, start + run.segment * core::kSegmentSlots);
+        EXPECT_GE(run.first, lo);
+        EXPECT_LT(run.first, lo + range);
+        EXPECT_LE(run.first + run.slots, cdf[run.position]);
+        for (std::uint64_t i = run.first; i < run.first + run.slots; ++i) ++covered[i];
+      });
+    for (std::uint64_t i = 0; i < total; ++i) ASSERT_EQ(covered[i], 1) << "slot " << i << ", range " << range;
+  }
+}
+
+TEST(CandidateStream, BatchedFillIsTheOneAtATimeRule) {
+  std::mt19937_64 rng(5);
+  for (std::uint32_t max_tries : {1u, 2u, 3u, 5u, 16u, 17u, 40u, 1u << 28})
+    for (double acceptance : {0.0, 0.02, 0.3, 0.9, 1.0})
+      for (std::uint64_t slots : {1ull, 5ull, 256ull}) {
+        if (acceptance == 0.0 && max_tries > 40) continue;  // it would run 2^28 tries a slot
+        core::SegmentFill one(slots, max_tries), batched(slots, max_tries);
+        std::vector<int> one_lanes, batched_lanes;
+        for (int batch = 0; !batched.done(); ++batch) {
+          std::uint32_t mask = 0;
+          for (int l = 0; l < cpu::kLanes; ++l)
+            mask |= std::uint32_t(std::bernoulli_distribution(acceptance)(rng)) << l;
+          for (int l = 0; l < cpu::kLanes && !one.done(); ++l)
+            if (one.take(((mask >> l) & 1u) != 0)) one_lanes.push_back(batch * cpu::kLanes + l);
+          batched.take(mask, cpu::kLanes, [&](int l, std::uint64_t slot) {
+            EXPECT_EQ(slot, batched_lanes.size());
+            batched_lanes.push_back(batch * cpu::kLanes + l);
+          });
+        }
+        SCOPED_TRACE(testing::Message() << "max_tries " << max_tries << ", acceptance " << acceptance);
+        EXPECT_TRUE(one.done());
+        EXPECT_EQ(batched_lanes, one_lanes);
+        EXPECT_EQ(batched.tries(), one.tries());
+        EXPECT_EQ(batched.exhausted(), one.exhausted());
+      }
+}
+
+TEST(CandidateStream, VectorCandidatesAreTheScalarOnes) {
+  // Segments and candidate indices past 2^32 reach the counter's high words.
+  const PhiloxKey key = stream_key(11, Stream::realization);
+  for (std::uint64_t segment : {0ull, 1ull, 77ull, (1ull << 32) + 5, (1ull << 55) + 3})
+    for (std::uint64_t first : {0ull, 16ull, (1ull << 32) - 8, (1ull << 39) + 32}) {
+      cpu::CandidateBatch batch;
+      cpu::draw_candidates(42, segment, first, key, batch);
+      for (int l = 0; l < cpu::kLanes; ++l) {
+        const ScalarCandidate c = scalar_candidate(42, segment, first + std::uint64_t(l), key);
+        ASSERT_EQ(batch.b1[l], c.b.b1) << segment << " " << first << " " << l;
+        ASSERT_EQ(batch.b2[l], c.b.b2);
+        ASSERT_EQ(batch.accept[l], c.accept);
+        ASSERT_EQ(batch.pick[l], c.pick);
+      }
+    }
+}
+
+TEST(CandidateStream, CountersOfDifferentCandidatesDiffer) {
+  EXPECT_NE(core::candidate_counter(1, 0, 1ull << 32), core::candidate_counter(1, 1ull << 32, 0));
+  EXPECT_NE(core::candidate_counter(1, 1ull << 32, 0), core::candidate_counter(1, 0, 0));
+  EXPECT_NE(core::candidate_counter(1, 0, 1ull << 32), core::candidate_counter(1, 0, 0));
+}
+
+TEST(CandidateStream, RealizationIsTheStreamWalkedOneCandidateAtATime) {
+  // A sparse map, so that acceptance is low and small max_tries exhaust slots; triangles of many
+  // sizes, so that counts span zero to several segments.
+  const Mesh mesh = trs_test::random_triangles(60, 0.0f, 1.0f, 31);
+  const Map m = trs_test::random_map(24, 24, 0.7, 32);
+  const DensityMapView view = m.view();
+  Frame frame;
+  make_cpu_sampler(mesh.view(), {&view, 1})->generate({.seed = 4, .target_count = 30000}, frame);
+  const core::DensityMap map{m.texels, m.width, m.height, m.addressing, m.scale};
+  const auto tris = texel_triangles(core::make_triangle_records(mesh.view(), 1), map);
+  const PhiloxKey key = stream_key(4, Stream::realization);
+  for (std::uint32_t max_tries : {1u, 3u, 20u, 1u << 28}) {
+    SCOPED_TRACE(max_tries);
+    Buffer<Sample> got;
+    std::vector<Sample> want;
+    const cpu::RealizationResult a = cpu::realize(tris, {&map, 1}, frame.max_density.span(), frame.cdf.span(),
+                                                  frame.inverse_permutation.span(), key, max_tries, got);
+    const cpu::RealizationResult b = reference_realize(tris, map, frame.max_density.span(), frame.cdf.span(),
+                                                       frame.inverse_permutation.span(), key, max_tries, want);
+    expect_same_samples(got.span(), want);
+    EXPECT_EQ(a.candidates, b.candidates);
+    EXPECT_EQ(a.exhausted, b.exhausted);
+    if (max_tries < 20) EXPECT_GT(a.exhausted, 0u) << "the rule on tries is exercised";
+  }
+}
+
+TEST(CandidateStream, RejectionSamplingIsTheStreamOverTheOutput) {
+  const Mesh mesh = trs_test::random_triangles(40, 0.0f, 1.0f, 33);
+  const Map m = trs_test::random_map(16, 16, 0.5, 34);
+  const core::DensityMap map{m.texels, m.width, m.height, m.addressing, m.scale};
+  const auto records = core::make_triangle_records(mesh.view(), 1);
+  const auto tris = texel_triangles(records, map);
+  Buffer<double> area_cdf;
+  const float bound = cpu::rejection_distribution(records, {&map, 1}, area_cdf);
+  const PhiloxKey key = stream_key(6, Stream::rejection);
+  const std::uint64_t n = 3000;
+  Buffer<Sample> got;
+  const cpu::RealizationResult a = cpu::rejection_sample(tris, {&map, 1}, area_cdf.span(), bound, n, key, 4, got);
+  // The definition: segment s holds samples [256 s, 256 s + 256); a candidate picks its
+  // triangle by area with its fourth word.
+  std::vector<Sample> want(n);
+  std::uint64_t candidates = 0, exhausted = 0;
+  for (std::uint64_t s = 0; s * core::kSegmentSlots < n; ++s) {
+    core::SegmentFill fill(std::min(core::kSegmentSlots, n - s * core::kSegmentSlots), 4);
+    for (std::uint64_t j = 0; !fill.done(); ++j) {
+      const ScalarCandidate c = scalar_candidate(0, s, j, key);
+      const auto tri = std::uint32_t(std::upper_bound(area_cdf.begin(), area_cdf.end(), c.pick * area_cdf[39]) -
+                                     area_cdf.begin());
+      const float d = core::texel_triangle_density(tris[tri], {&map, 1}, c.b.b1, c.b.b2);
+      if (fill.take(c.accept * bound < d)) want[s * core::kSegmentSlots + fill.filled() - 1] = {tri, c.b.b1, c.b.b2};
+    }
+    candidates += fill.tries();
+    exhausted += fill.exhausted();
+  }
+  expect_same_samples(got.span(), want);
+  EXPECT_EQ(a.candidates, candidates);
+  EXPECT_EQ(a.exhausted, exhausted);
+  EXPECT_GT(exhausted, 0u);
+}
