@@ -382,7 +382,8 @@ TEST_F(VulkanSampler, FramesWithoutATargetRealizeEverySample) {
 
 TEST_F(VulkanSampler, RejectionSamplingWithoutATargetDrawsTheCpuSamples) {
   // N is N-bar rounded, on the device from a float total (the CPU's is a double): the counts may
-  // differ by one, and sample i is the same point on both backends, keyed by i.
+  // differ by one, and sample i, slot i of the output's candidate stream, is the same point on
+  // both backends.
   const Mesh mesh = trs_test::random_triangles(100, 0.0f, 1.0f, 33);
   Map map = trs_test::random_map(16, 16, 0.3, 34);
   map.scale = 500.0f;

@@ -55,8 +55,8 @@ struct FrameRequest {
   /// False: stop after the counts and the CDF (no samples), e.g. to size buffers.
   bool realize = true;
   VulkanFrameOptions vulkan;
-  /// Candidates tried per sample before giving up. A sample that gives up keeps its last
-  /// candidate and is counted in Frame::exhausted; a non-zero count means a biased frame.
+  /// Rejections in a row before a slot gives up: the last of them fills the slot anyway and is
+  /// counted in Frame::exhausted; a non-zero count means a biased frame.
   std::uint32_t max_tries = 1u << 28;
 };
 
@@ -82,7 +82,7 @@ struct Frame {
   double expected_total = 0;      ///< N-bar, the integral of the density over the mesh (NaN: not computed)
   std::uint64_t sample_count = 0;   ///< N, the effective total
   std::uint64_t candidates = 0;     ///< candidates tried; sample_count / candidates = acceptance rate
-  std::uint64_t exhausted = 0;      ///< samples that reached max_tries
+  std::uint64_t exhausted = 0;      ///< slots filled after max_tries rejections in a row
   Method method = Method::trs;
   ScanOrder scan_used = ScanOrder::ordered;
   std::optional<Counting> counting_used;  ///< the counting path that ran; none when not counted
