@@ -34,12 +34,12 @@ void split(const Part& p, std::vector<Part>& out) {
   }
 }
 
-/// Mean density over D_T^max: the probability that the rejection loop accepts a candidate.
-/// 1 for a part with nothing to sample (no density or no area): nothing to gain by splitting it.
-double acceptance(double expected, float max_density, double area) {
-  const double bound = double(max_density) * area;
-  return bound > 0.0 ? expected / bound : 1.0;
-}
+/// What the subdivision weighs about a part, from one counting pass over its parts.
+struct Measure {
+  double bound;       ///< D_T^max times world area: candidates per unit of expected samples, times them
+  double acceptance;  ///< mean density over D_T^max; 1 with nothing to sample (no gain in splitting)
+  double texels;      ///< area in texels
+};
 
 double texel_area(const core::TexelTriangle& t) {
   return 0.5 * std::abs(double(t.edge1[0]) * t.edge2[1] - double(t.edge1[1]) * t.edge2[0]);
@@ -51,33 +51,59 @@ RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> m
                          const Refinement& refinement) {
   core::validate_mesh(mesh, maps.size());
   for (std::size_t i = 0; i < maps.size(); ++i) core::validate_map(maps[i], i);
-  std::vector<Part> open(mesh.indices.size() / 3), done, next;
+  std::vector<Part> open(mesh.indices.size() / 3), done, children, next;
   for (std::uint32_t t = 0; t < open.size(); ++t) open[t] = {t, {{0, 0}, {1, 0}, {0, 1}}};
-  Buffer<double> expected;
-  Buffer<float> max_density;
-  for (std::uint32_t level = 0; !open.empty(); ++level) {
-    if (level == refinement.max_levels || !(refinement.min_acceptance > 0.0f)) {
-      done.insert(done.end(), open.begin(), open.end());
-      break;
-    }
-    build(mesh, open);
+  const auto measure = [&](const std::vector<Part>& parts) {
+    build(mesh, parts);
     const core::HostScene scene(view(), maps);
+    Buffer<double> expected;
+    Buffer<float> max_density;
     core::count(scene.triangles(), scene.texel_triangles(), scene.maps(), expected, max_density);
-    next.clear();
-    for (std::size_t i = 0; i < open.size(); ++i) {
-      // Parts there would be if this one and those after it stayed whole.
-      const std::uint64_t whole = done.size() + next.size() + (open.size() - i);
-      const bool worth = acceptance(expected[i], max_density[i], scene.triangles()[i].area) <
-                             refinement.min_acceptance &&
-                         texel_area(scene.texel_triangles()[i]) > refinement.min_texels;
-      if (worth && whole + 3 <= refinement.max_triangles)
-        split(open[i], next);
-      else
-        done.push_back(open[i]);
+    std::vector<Measure> out(parts.size());
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      const double bound = double(max_density[i]) * scene.triangles()[i].area;
+      out[i] = {bound, bound > 0.0 ? expected[i] / bound : 1.0, texel_area(scene.texel_triangles()[i])};
     }
+    return out;
+  };
+  const bool refine = refinement.min_acceptance > 0.0f && refinement.max_levels > 0;
+  std::vector<Measure> measured = refine ? measure(open) : std::vector<Measure>{}, child_measured, next_measured;
+  std::uint64_t total = open.size();  // parts, counting every split kept so far
+  for (std::uint32_t level = 0; refine && level < refinement.max_levels && !open.empty(); ++level) {
+    // Split every part below the acceptance target, count the children, and keep a split of a
+    // small part only where it pays: its parts must draw min_split_gain times fewer candidates
+    // than the whole.
+    std::vector<std::size_t> tried;
+    children.clear();
+    for (std::size_t i = 0; i < open.size(); ++i)
+      if (measured[i].acceptance < refinement.min_acceptance && measured[i].texels > refinement.min_texels) {
+        tried.push_back(i);
+        split(open[i], children);
+      }
+    if (tried.empty()) break;
+    child_measured = measure(children);
+    next.clear();
+    next_measured.clear();
+    std::vector<bool> kept(open.size(), false);
+    for (std::size_t k = 0; k < tried.size(); ++k) {
+      double bound = 0.0;
+      for (std::size_t c = 4 * k; c < 4 * k + 4; ++c) bound += child_measured[c].bound;
+      const Measure& whole = measured[tried[k]];
+      const bool pays = whole.texels > refinement.gain_texels || bound * refinement.min_split_gain <= whole.bound;
+      if (!pays || total + 3 > refinement.max_triangles) continue;
+      kept[tried[k]] = true;
+      total += 3;
+      next.insert(next.end(), children.begin() + std::ptrdiff_t(4 * k), children.begin() + std::ptrdiff_t(4 * k + 4));
+      next_measured.insert(next_measured.end(), child_measured.begin() + std::ptrdiff_t(4 * k),
+                           child_measured.begin() + std::ptrdiff_t(4 * k + 4));
+    }
+    for (std::size_t i = 0; i < open.size(); ++i)
+      if (!kept[i]) done.push_back(open[i]);
     if (!next.empty()) levels_ = level + 1;
     open.swap(next);
+    measured.swap(next_measured);
   }
+  done.insert(done.end(), open.begin(), open.end());
   // Parts of one triangle side by side: the sampler walks them in order.
   std::stable_sort(done.begin(), done.end(),
                    [](const Part& a, const Part& b) { return a.parent < b.parent; });

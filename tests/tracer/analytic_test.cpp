@@ -135,7 +135,7 @@ TEST_F(AnalyticQuad, EveryStrategyConvergesToTheQuadrature) {
 // back to the triangles: the same estimate; `power` reads the per-triangle integrals through it.
 TEST(RefinedLightSampler, TrsAndPowerConvergeToTheQuadrature) {
   lightsampler::SamplerOptions sampler = trs_test::kCpuSampler;
-  sampler.refinement = {.min_acceptance = 0.9f, .min_texels = 1.0f};
+  sampler.refinement = {.min_acceptance = 0.9f, .min_texels = 1.0f, .min_split_gain = 1.0f};  // split even where it barely pays
   const QuadOverPlane bench(sampler);
   lightsampler::Frame frame;
   bench.emitters->sampler().generate({.seed = 1, .target_count = 1000}, frame);
