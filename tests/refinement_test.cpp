@@ -9,6 +9,8 @@
 // i.i.d. sampling, so the test is conservative. It is shown to reject the same samples brought
 // back without the change of coordinates.
 
+#include <random>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -171,4 +173,25 @@ TEST(Refinement, RejectsPartSamplesKeptInThePartsCoordinates) {
   }
   EXPECT_TRUE(trs_test::test_per_triangle(s, right).passes(trs_test::kDistributionAlpha));
   EXPECT_FALSE(trs_test::test_per_triangle(s, wrong).passes(trs_test::kDistributionAlpha));
+}
+
+TEST(Refinement, NearTheTexelScaleKeepsOnlySplitsThatPay) {
+  // Two triangles of 8 texels each on a 4 x 4 map. Texel noise in [0.6, 1]: every part still
+  // sees a texel near the maximum, so a split lowers the candidates by far less than 1.25 and is
+  // not kept (it is, with a gain of 1). One bright texel among zeros: a split cuts the
+  // candidates of the parts away from it to nothing, and is kept.
+  const trs_test::Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
+  trs_test::Map noise{std::vector<float>(16), 4, 4};
+  std::mt19937_64 rng(8);
+  for (float& t : noise.texels) t = std::uniform_real_distribution<float>(0.6f, 1.0f)(rng);
+  const DensityMapView noisy = noise.view();
+  const Refinement refine{.min_acceptance = 0.95f, .min_texels = 0.25f};
+  EXPECT_EQ(RefinedMesh(mesh.view(), {&noisy, 1}, refine).levels(), 0u);
+  Refinement always = refine;
+  always.min_split_gain = 1.0f;
+  EXPECT_GT(RefinedMesh(mesh.view(), {&noisy, 1}, always).levels(), 0u);
+  trs_test::Map spot{std::vector<float>(16, 0.0f), 4, 4};
+  spot.texels[5] = 1.0f;
+  const DensityMapView sparse = spot.view();
+  EXPECT_GT(RefinedMesh(mesh.view(), {&sparse, 1}, refine).levels(), 0u);
 }
