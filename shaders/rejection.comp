@@ -2,8 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Plain rejection sampling (Algorithm 1) through the candidate stream over the whole output:
 // each subgroup walks segments of kSegmentSlots samples in turn; a candidate picks its triangle
-// by area (binary search in the area CDF) and a uniform point on it, accepted against the global
-// bound. The same samples as the CPU backend's.
+// by area (a search in the area CDF that its cutpoints narrow) and a uniform point on it,
+// accepted against the global bound. The same samples as the CPU backend's.
 #include "workgroup.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
@@ -12,9 +12,14 @@ layout(push_constant) uniform Push { RejectionPush p; };
 float global_bound;
 double total_area;
 
-uint pick_triangle(double target) {
+// core::pick_by_area: the first triangle whose CDF exceeds u times the total area, searched
+// between the cutpoints of u's bucket and its neighbours.
+uint pick_by_area(double u) {
   Doubles cdf = Doubles(p.area_cdf);
-  uint lo = 0u, hi = p.triangle_count - 1u;
+  Uints guide = Uints(p.area_guide);
+  uint k = min(uint(u * double(p.triangle_count)), p.triangle_count - 1u);
+  uint lo = guide.v[k > 0u ? k - 1u : 0u], hi = guide.v[min(k + 2u, p.triangle_count)];
+  double target = u * total_area;
   while (lo < hi) {
     uint mid = lo + (hi - lo) / 2u;
     if (cdf.v[mid] > target) hi = mid; else lo = mid + 1u;
@@ -25,7 +30,7 @@ uint pick_triangle(double target) {
 bool draw_candidate(uint64_t segment, uint64_t candidate, out Sample drawn) {
   uvec4 u = philox4x32(candidate_counter(0u, segment, candidate), uvec2(p.key0, p.key1));
   vec2 b = triangle_map(uniform_float(u.x), uniform_float(u.y));
-  uint tri = pick_triangle(uniform_double(u.w) * total_area);
+  uint tri = pick_by_area(uniform_double(u.w));
   drawn = Sample(tri, b.x, b.y);
   return uniform_float(u.z) * global_bound <
          texel_triangle_density(Triangles(p.triangles).v[tri], Maps(p.maps), p.texels, b);

@@ -158,6 +158,7 @@ struct RejectionPush {
   uint64_t maps;
   uint64_t texels;
   uint64_t area_cdf;  // double[T], inclusive CDF of world areas
+  uint64_t area_guide;  // uint[T + 1], its cutpoints (core/area_pick.h)
   uint64_t samples;
   uint64_t totals;
   uint key0, key1;

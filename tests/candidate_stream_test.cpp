@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/area_pick.h"
 #include "core/candidate_stream.h"
 #include "cpu/candidates.h"
 #include "cpu/passes.h"
@@ -183,11 +184,12 @@ TEST(CandidateStream, RejectionSamplingIsTheStreamOverTheOutput) {
   const auto records = core::make_triangle_records(mesh.view(), 1);
   const auto tris = texel_triangles(records, map);
   Buffer<double> area_cdf;
-  const float bound = cpu::rejection_distribution(records, {&map, 1}, area_cdf);
+  std::vector<std::uint32_t> area_guide;
+  const float bound = cpu::rejection_distribution(records, {&map, 1}, area_cdf, area_guide);
   const PhiloxKey key = stream_key(6, Stream::rejection);
   const std::uint64_t n = 3000;
   Buffer<Sample> got;
-  const cpu::RealizationResult a = cpu::rejection_sample(tris, {&map, 1}, area_cdf.span(), bound, n, key, 4, got);
+  const cpu::RealizationResult a = cpu::rejection_sample(tris, {&map, 1}, area_cdf.span(), area_guide, bound, n, key, 4, got);
   // The definition: segment s holds samples [256 s, 256 s + 256); a candidate picks its
   // triangle by area with its fourth word.
   std::vector<Sample> want(n);
@@ -208,4 +210,30 @@ TEST(CandidateStream, RejectionSamplingIsTheStreamOverTheOutput) {
   EXPECT_EQ(a.candidates, candidates);
   EXPECT_EQ(a.exhausted, exhausted);
   EXPECT_GT(exhausted, 0u);
+}
+
+TEST(CandidateStream, AreaPickThroughCutpointsIsTheBinarySearch) {
+  // Zero areas (flat runs of the CDF), areas over twelve orders of magnitude, and u at the
+  // buckets' edges, at 0 and just below 1.
+  std::mt19937_64 rng(9);
+  for (std::size_t n : {1ul, 2ul, 7ul, 1000ul}) {
+    std::vector<double> cdf;
+    double sum = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const int kind = int(rng() % 4);
+      sum += kind == 0 ? 0.0 : kind == 1 ? 1e-6 * double(rng() % 100) : kind == 2 ? 1e6 : double(rng() % 10);
+      cdf.push_back(sum);
+    }
+    if (sum == 0.0) cdf.back() = sum = 1.0;
+    const std::vector<std::uint32_t> guide = core::area_guide(cdf);
+    std::vector<double> us = {0.0, 1.0 - 0x1p-32};
+    for (std::size_t k = 0; k <= n; ++k)
+      for (double d : {-0x1p-40, 0.0, 0x1p-40}) us.push_back(std::clamp(double(k) / double(n) + d, 0.0, 1.0 - 0x1p-32));
+    for (int i = 0; i < 2000; ++i) us.push_back(uniform_double(std::uint32_t(rng())));
+    for (double u : us) {
+      const auto want = std::uint32_t(std::min<std::size_t>(
+          std::upper_bound(cdf.begin(), cdf.end(), u * cdf.back()) - cdf.begin(), n - 1));
+      ASSERT_EQ(core::pick_by_area(cdf, guide, u), want) << "n " << n << ", u " << u;
+    }
+  }
 }

@@ -98,9 +98,10 @@ TEST(Distribution, RejectsRejectionSamplingWithTooLowABound) {
   Frame frame = generate(s, Method::rejection);
   const core::DensityMap map{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
   Buffer<double> area_cdf;
+  std::vector<std::uint32_t> area_guide;
   const auto records = core::make_triangle_records(s.mesh.view(), 1);
-  const float bound = cpu::rejection_distribution(records, {&map, 1}, area_cdf);
-  cpu::rejection_sample(texel_triangles(s), {&map, 1}, area_cdf.span(), 0.5f * bound, frame.sample_count,
+  const float bound = cpu::rejection_distribution(records, {&map, 1}, area_cdf, area_guide);
+  cpu::rejection_sample(texel_triangles(s), {&map, 1}, area_cdf.span(), area_guide, 0.5f * bound, frame.sample_count,
                         stream_key(s.seed, Stream::rejection), 1u << 20, frame.samples);
   EXPECT_FALSE(trs_test::test_all_cells(s, frame.samples.span()).passes(kAlpha));
 }

@@ -133,7 +133,7 @@ class CpuSampler final : public Sampler {
       counting_pass(frame, pass);  // Algorithm 1 needs N: without a target it is N-bar
       target = frame.expected_total;
     }
-    const float bound = cpu::rejection_distribution(scene_.triangles(), scene_.maps(), area_cdf_);
+    const float bound = cpu::rejection_distribution(scene_.triangles(), scene_.maps(), area_cdf_, area_guide_);
     frame.passes.push_back({Pass::distribution, pass.lap_ms()});
 
     const double total_area = area_cdf_.empty() ? 0.0 : area_cdf_[area_cdf_.size() - 1];
@@ -144,7 +144,7 @@ class CpuSampler final : public Sampler {
       return;
     }
     const cpu::RealizationResult r = cpu::rejection_sample(
-        scene_.texel_triangles(), scene_.maps(), area_cdf_.span(), bound, frame.sample_count,
+        scene_.texel_triangles(), scene_.maps(), area_cdf_.span(), area_guide_, bound, frame.sample_count,
         stream_key(request.seed, Stream::rejection), request.max_tries, frame.samples);
     frame.candidates = r.candidates;
     frame.exhausted = r.exhausted;
@@ -155,6 +155,7 @@ class CpuSampler final : public Sampler {
   std::string device_;
   core::HostScene scene_;
   Buffer<double> area_cdf_;
+  std::vector<std::uint32_t> area_guide_;
 };
 
 }  // namespace

@@ -49,16 +49,17 @@ RealizationResult realize(std::span<const core::TexelTriangle> triangles,
 
 /// Plain rejection sampling (Algorithm 1): triangles by area, uniform points, accepted against
 /// the global max density, through the candidate stream over the whole output. `area_cdf` is
-/// the inclusive CDF of triangle areas.
+/// the inclusive CDF of triangle areas, `area_guide` its cutpoints (core/area_pick.h).
 RealizationResult rejection_sample(std::span<const core::TexelTriangle> triangles,
                                    std::span<const core::DensityMap> maps, std::span<const double> area_cdf,
-                                   float global_max_density, std::uint64_t sample_count,
+                                   std::span<const std::uint32_t> area_guide, float global_max_density, std::uint64_t sample_count,
                                    PhiloxKey key, std::uint32_t max_tries, Buffer<Sample>& samples);
 
-/// Inclusive CDF of world areas and the max density of every map a triangle uses: what plain
-/// rejection sampling needs. Returns the max density.
+/// Inclusive CDF of world areas, its cutpoints, and the max density of every map a triangle
+/// uses: what plain rejection sampling needs. Returns the max density.
 float rejection_distribution(std::span<const core::TriangleRecord> triangles,
-                             std::span<const core::DensityMap> maps, Buffer<double>& area_cdf);
+                             std::span<const core::DensityMap> maps, Buffer<double>& area_cdf,
+                             std::vector<std::uint32_t>& area_guide);
 
 /// The time of `runs` passes writing `count` samples to host memory with the backend's threads
 /// (the floor under realization), in milliseconds. Each pass writes every sample anew.

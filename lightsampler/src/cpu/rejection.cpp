@@ -6,13 +6,15 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/parallel_scan.h>
 
+#include "core/area_pick.h"
 #include "cpu/passes.h"
 #include "cpu/candidates.h"
 
 namespace lightsampler::cpu {
 
 float rejection_distribution(std::span<const core::TriangleRecord> triangles,
-                             std::span<const core::DensityMap> maps, Buffer<double>& area_cdf) {
+                             std::span<const core::DensityMap> maps, Buffer<double>& area_cdf,
+                             std::vector<std::uint32_t>& area_guide) {
   const std::size_t n = triangles.size();
   area_cdf.resize(n);
   tbb::parallel_scan(
@@ -25,6 +27,7 @@ float rejection_distribution(std::span<const core::TriangleRecord> triangles,
         return sum;
       },
       std::plus<>());
+  area_guide = core::area_guide(area_cdf.span());
   // D_M^max: the largest texel of any map, scaled. Maps change every frame, so it is recomputed.
   float bound = 0;
   for (const core::DensityMap& map : maps) {
@@ -42,12 +45,10 @@ float rejection_distribution(std::span<const core::TriangleRecord> triangles,
 
 RealizationResult rejection_sample(std::span<const core::TexelTriangle> triangles,
                                    std::span<const core::DensityMap> maps, std::span<const double> area_cdf,
-                                   float global_max_density, std::uint64_t sample_count,
+                                   std::span<const std::uint32_t> area_guide, float global_max_density, std::uint64_t sample_count,
                                    PhiloxKey key, std::uint32_t max_tries, Buffer<Sample>& samples) {
   samples.resize(sample_count);
   if (sample_count == 0) return {0, 0};
-  const double total_area = area_cdf.back();
-  const std::size_t last = area_cdf.size() - 1;
   // The whole output is one run of segments, as if one triangle held every sample.
   const std::uint64_t output[1] = {sample_count};
   std::atomic<std::uint64_t> candidates{0}, exhausted{0};
@@ -63,9 +64,7 @@ RealizationResult rejection_sample(std::span<const core::TexelTriangle> triangle
             std::uint32_t accepted = 0;
             draw_candidates(0, run.segment, first, key, batch);
             for (int l = 0; l < kLanes; ++l) {
-              const double pick = batch.pick[l] * total_area;
-              const auto tri = std::uint32_t(std::min<std::size_t>(
-                  std::upper_bound(area_cdf.begin(), area_cdf.end(), pick) - area_cdf.begin(), last));
+              const std::uint32_t tri = core::pick_by_area(area_cdf, area_guide, batch.pick[l]);
               const float d = core::texel_triangle_density(triangles[tri], maps, batch.b1[l], batch.b2[l]);
               accepted |= std::uint32_t(batch.accept[l] * global_max_density < d) << l;
               out[l] = {tri, batch.b1[l], batch.b2[l]};

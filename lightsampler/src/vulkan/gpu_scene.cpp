@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/area_pick.h"
 #include "vulkan/layouts.h"
 
 namespace lightsampler::vk {
@@ -47,6 +48,9 @@ GpuScene::GpuScene(Context& context, const MeshView& mesh, std::span<const Densi
   total_area_ = sum;
   area_cdf_ = context_.create_buffer(cdf.size() * sizeof(double));
   if (!cdf.empty()) context_.upload(area_cdf_, 0, cdf.data(), cdf.size() * sizeof(double));
+  const std::vector<std::uint32_t> guide = core::area_guide(cdf);
+  area_guide_ = context_.create_buffer(guide.size() * sizeof(std::uint32_t));
+  context_.upload(area_guide_, 0, guide.data(), guide.size() * sizeof(std::uint32_t));
 }
 
 void GpuScene::update_map(std::size_t index, const DensityMapView& map) {

@@ -38,6 +38,7 @@ class GpuScene {
   VkDeviceAddress map_records() const { return map_records_.address(); }
   VkDeviceAddress texels() const { return texels_.address(); }
   VkDeviceAddress area_cdf() const { return area_cdf_.address(); }
+  VkDeviceAddress area_guide() const { return area_guide_.address(); }
 
  private:
   void upload_maps();
@@ -49,7 +50,7 @@ class GpuScene {
   std::uint64_t candidate_cells_ = 0;
   std::uint32_t small_triangle_cells_ = 0;
   std::uint64_t large_triangle_cells_ = 0;
-  Buffer triangles_, map_records_, texels_, area_cdf_;
+  Buffer triangles_, map_records_, texels_, area_cdf_, area_guide_;
   double total_area_ = 0;
 };
 

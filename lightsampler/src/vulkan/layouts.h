@@ -23,7 +23,7 @@ static_assert(sizeof(RoundingPush) == 48 && offsetof(RoundingPush, target) == 24
 static_assert(sizeof(ScanPush) == 56 && offsetof(ScanPush, sum_bits) == 48);
 static_assert(sizeof(RealizationPush) == 80 && offsetof(RealizationPush, key0) == 64 &&
               offsetof(RealizationPush, max_tries) == 76);
-static_assert(sizeof(RejectionPush) == 72 && offsetof(RejectionPush, key0) == 48 && offsetof(RejectionPush, map) == 68);
+static_assert(sizeof(RejectionPush) == 80 && offsetof(RejectionPush, key0) == 56 && offsetof(RejectionPush, map) == 76);
 // Vulkan guarantees 128 bytes of push constants.
 static_assert(sizeof(RealizationPush) <= 128 && sizeof(RejectionPush) <= 128);
 

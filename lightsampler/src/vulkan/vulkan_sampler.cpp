@@ -301,7 +301,7 @@ class VulkanSampler final : public Sampler {
     if (!request.target_count) record_counting(c, request, frame);  // Algorithm 1 needs N
     for (std::size_t m = 0; m < scene_.host().maps().size(); ++m) {
       const std::uint32_t texels = std::uint32_t(scene_.host().maps()[m].texels.size());
-      const gpu::RejectionPush push{0, scene_.map_records(), scene_.texels(), 0, 0, buffers_.totals.address(),
+      const gpu::RejectionPush push{0, scene_.map_records(), scene_.texels(), 0, 0, 0, buffers_.totals.address(),
                                     0, 0, n_tri, 0, texels, std::uint32_t(m)};
       c.dispatch(pipelines_.rejection_distribution, &push, sizeof push, workgroups_for(texels));
     }
@@ -310,7 +310,7 @@ class VulkanSampler final : public Sampler {
     const PhiloxKey key = stream_key(request.seed, Stream::rejection);
     const PhiloxKey rounding_key = stream_key(request.seed, Stream::rounding);
     const gpu::RejectionPush push{scene_.triangles(), scene_.map_records(), scene_.texels(), scene_.area_cdf(),
-                                  buffers_.samples.address(), buffers_.totals.address(), key[0], key[1], n_tri,
+                                  scene_.area_guide(), buffers_.samples.address(), buffers_.totals.address(), key[0], key[1], n_tri,
                                   device_max_tries(context_->device_name(), request.max_tries), 0, 0};
     const gpu::PlanPush plan{.target = request.target_count ? *request.target_count : -1.0,
                              .total_area = n_tri > 0 ? scene_.total_area() : 0.0,
