@@ -36,7 +36,7 @@ inline Estimate estimate_radiance(const tracer::Scene& scene, const tracer::Geom
     glm::dvec3 frame(0.0);
     for (unsigned p = 0; p < paths; ++p) {
       tracer::PathRandom random(key, p, f);
-      frame += glm::dvec3(tracer.radiance(ray, random, rays));
+      frame += glm::dvec3(tracer.radiance(ray, random, rays).radiance);
     }
     frame /= double(paths);
     sum += frame;

@@ -157,6 +157,57 @@ TEST_F(RenderCliTest, RendersEveryStrategy) {
   }
 }
 
+// A time budget: frames until that much wall time has passed since the start, set-up included;
+// an explicit --spp caps them.
+TEST_F(RenderCliTest, TimeBudgetRendersUntilItIsSpent) {
+  const fs::path exr = file("timed.exr"), json = file("timed.json");
+  const std::vector<std::string> args = {kScene.string(), "--width", "32", "--height", "18", "--lights",
+                                         "1000", "--max-depth", "2", "--threads", "2", "--quiet",
+                                         "--time", "2", "--out", exr.string(), "--stats", json.string()};
+  const auto start = std::chrono::steady_clock::now();
+  const RunResult result = run(args);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_GE(seconds, 2.0);
+  EXPECT_LT(seconds, 4.0) << "a frame of 32 x 18 pixels takes milliseconds";
+  read_render(exr, 32, 18);
+  const nlohmann::json stats = read_json(json);
+  EXPECT_GT(stats["frames"].get<unsigned>(), 2u);
+  EXPECT_EQ(stats["interrupted"], false);
+  EXPECT_GE(stats["wall_seconds"].get<double>(), 2.0);
+  EXPECT_EQ(stats["settings"]["time"], 2.0);
+  EXPECT_TRUE(stats["settings"]["spp"].is_null()) << "no cap on the frames";
+
+  std::vector<std::string> capped = args;
+  capped.insert(capped.end(), {"--time", "60", "--spp", "3"});
+  const auto capped_start = std::chrono::steady_clock::now();
+  ASSERT_EQ(run(capped).status, 0);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - capped_start).count(), 30.0);
+  EXPECT_EQ(read_json(json)["frames"], 3);
+  EXPECT_EQ(read_json(json)["settings"]["spp"], 3);
+}
+
+// The emitter mask: per pixel, the fraction of camera samples whose first hit is an emitter.
+TEST_F(RenderCliTest, EmitterMaskIsTheFractionOfCameraSamplesOnAnEmitter) {
+  const fs::path exr = file("out.exr"), mask = file("mask.exr");
+  const RunResult result =
+      run(tiny(kScene, {"--out", exr.string(), "--emitter-mask", mask.string(), "--spp", "4"}));
+  ASSERT_EQ(result.status, 0) << result.err;
+  const auto image = read_render(mask, 16, 9);
+  ASSERT_TRUE(image);
+  std::size_t on = 0, off = 0;
+  for (std::size_t i = 0; i < image->rgb.size(); i += 3) {
+    const float f = image->rgb[i];
+    EXPECT_EQ(image->rgb[i + 1], f);
+    EXPECT_EQ(image->rgb[i + 2], f);
+    EXPECT_LE(f, 1.0f);
+    EXPECT_EQ(f * 4, std::round(f * 4)) << "a count of 4 samples";
+    (f > 0 ? on : off) += 1;
+  }
+  EXPECT_GT(on, 0u) << "the neon sign is in view";
+  EXPECT_GT(off, 0u) << "so is the wall behind it";
+}
+
 // 2. A settings file gives defaults; the command line wins over it.
 TEST_F(RenderCliTest, SettingsFileAndCommandLine) {
   const fs::path settings = write_text("render.toml", "# test settings\nwidth = 8\nspp = 3\n");
@@ -265,7 +316,9 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
   for (const std::vector<std::string>& args :
        {tiny(kScene, {"--strategy", "magic", "--out", file("out.exr").string()}), no_samples,
         tiny(kScene, {"--stats", file("out.json").string()}),
-        tiny(kScene, {"--refine", "1.5", "--out", file("out.exr").string()})}) {
+        tiny(kScene, {"--refine", "1.5", "--out", file("out.exr").string()}),
+        tiny(kScene, {"--time", "0", "--out", file("out.exr").string()}),
+        tiny(kScene, {"--time", "-1", "--out", file("out.exr").string()})}) {
     const RunResult result = run(args);
     EXPECT_EQ(result.status, 2) << result.err;
     EXPECT_NE(result.err.find("trs-render: error: "), std::string::npos) << result.err;

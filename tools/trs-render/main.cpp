@@ -35,11 +35,12 @@ extern "C" void on_interrupt(int) {
   std::signal(SIGINT, SIG_DFL);
 }
 
-/// The per-sample luminance variance as a grey RGB image.
-void write_variance(const std::filesystem::path& file, const tracer::RenderResult& result) {
+/// One value per pixel (a variance, a fraction) as a grey RGB image.
+void write_grey(const std::filesystem::path& file, const tracer::RenderResult& result,
+                const std::vector<float>& values) {
   std::vector<float> grey;
-  grey.reserve(3 * result.luminance_variance.size());
-  for (const float v : result.luminance_variance) grey.insert(grey.end(), {v, v, v});
+  grey.reserve(3 * values.size());
+  for (const float v : values) grey.insert(grey.end(), {v, v, v});
   write_exr(file, result.width, result.height, grey.data());
 }
 
@@ -53,17 +54,22 @@ int run(const RenderOptions& options) {
   check_writable(options.out);
   if (options.preview) check_writable(*options.preview);
   if (options.variance) check_writable(*options.variance);
+  if (options.emitter_mask) check_writable(*options.emitter_mask);
   std::optional<AtomicFile> stats;
   if (options.stats) stats.emplace(*options.stats);
 
   const tracer::Scene scene = tracer::load_gltf_scene(options.scene);
+  tracer::RenderSettings settings = options.render;
+  if (options.time_seconds)
+    settings.deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                    std::chrono::duration<double>(*options.time_seconds));
   std::optional<tracer::Renderer> renderer;
   try {
-    renderer.emplace(scene, options.render);
+    renderer.emplace(scene, settings);
   } catch (const std::invalid_argument& e) {
     throw FileError(options.scene, e.what());
   }
-  ProgressBar bar(options.progress);
+  ProgressBar bar(options.progress, options.time_seconds);
   const tracer::RenderResult result =
       renderer->render([&](unsigned done, unsigned total) { bar.update(done, total); }, interrupted);
   bar.finish();
@@ -77,7 +83,8 @@ int run(const RenderOptions& options) {
   if (options.preview)
     write_png_preview(*options.preview, result.width, result.height, result.rgb.data(),
                       options.exposure);
-  if (options.variance) write_variance(*options.variance, result);
+  if (options.variance) write_grey(*options.variance, result, result.luminance_variance);
+  if (options.emitter_mask) write_grey(*options.emitter_mask, result, result.emitter_fraction);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (stats) {
     stats->write(stats_json(options, result, wall).dump(2) + "\n");
@@ -94,8 +101,7 @@ int run(const RenderOptions& options) {
     break;
   }
   if (result.interrupted) {
-    std::cerr << "trs-render: interrupted; saved " << result.frames << " of "
-              << options.render.spp << " spp\n";
+    std::cerr << "trs-render: interrupted; saved " << result.frames << " spp\n";
     return kInterrupted;
   }
   return 0;

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -26,7 +27,8 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
       "trs-render");
   RenderOptions options;
   tracer::RenderSettings& r = options.render;
-  std::string strategy = "trs", backend = "auto", out, stats, preview, variance;
+  std::string strategy = "trs", backend = "auto", out, stats, preview, variance, emitter_mask;
+  double time = 0.0;
   bool quiet = false;
 
   app.set_config("--settings", "", "settings file of `key = value` lines (TOML) with the long "
@@ -37,6 +39,10 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   app.add_option("--out", out, "linear float RGB OpenEXR image")->required();
   app.add_option("--spp", r.spp, "samples per pixel: frames of one path per pixel")
       ->capture_default_str();
+  app.add_option("--time", time,
+                 "render frames until SECONDS of wall time have passed since the start, set-up "
+                 "included (at least one frame); an explicit --spp then caps the frames")
+      ->check(CLI::PositiveNumber & kFiniteNonNegative);
   app.add_option("--strategy", strategy, "light sampling for next-event estimation")
       ->check(CLI::IsMember(names(kStrategies)))
       ->capture_default_str();
@@ -68,6 +74,10 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   app.add_option("--variance", variance,
                  "OpenEXR of each pixel's per-sample luminance variance (all three channels), "
                  "for noise studies and noise-aware image comparison (trs-imgdiff)");
+  app.add_option("--emitter-mask", emitter_mask,
+                 "OpenEXR of each pixel's fraction of camera samples whose first hit is an emitter "
+                 "(all three channels): pixels whose noise is the pixel footprint over an emitter, "
+                 "the same for every light strategy, to leave out of noise figures");
   app.add_option("--exposure", options.exposure, "preview exposure, stops")->capture_default_str();
   app.add_flag("--quiet", quiet, "no progress bar");
 
@@ -83,6 +93,10 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
     std::cerr << "trs-render: error: --width, --height and --spp must be at least 1\n";
     return kUsageError;
   }
+  if (app.count("--time") > 0) {
+    options.time_seconds = time;
+    if (app.count("--spp") == 0) r.spp = std::numeric_limits<unsigned>::max();
+  }
   r.strategy.kind = kStrategies.at(strategy);
   r.sampler.backend = kBackends.at(backend);
   r.strategy.seed = r.seed;
@@ -90,6 +104,7 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   if (!stats.empty()) options.stats = stats;
   if (!preview.empty()) options.preview = preview;
   if (!variance.empty()) options.variance = variance;
+  if (!emitter_mask.empty()) options.emitter_mask = emitter_mask;
   options.progress = !quiet;
   return options;
 }

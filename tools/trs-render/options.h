@@ -15,6 +15,9 @@ struct RenderOptions {
   std::optional<std::filesystem::path> stats;
   std::optional<std::filesystem::path> preview;
   std::optional<std::filesystem::path> variance;
+  std::optional<std::filesystem::path> emitter_mask;
+  /// Render until this much wall time has passed since the start, set-up included.
+  std::optional<double> time_seconds;
   float exposure = 0.0f;
   bool progress = true;  ///< a progress bar when standard error is a terminal
   tracer::RenderSettings render;

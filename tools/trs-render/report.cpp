@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -60,19 +61,20 @@ double per_second(double count, double seconds) { return seconds > 0.0 ? count /
 
 }  // namespace
 
-ProgressBar::ProgressBar(bool enabled)
-    : enabled_(enabled && isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()) {}
+ProgressBar::ProgressBar(bool enabled, std::optional<double> budget_seconds)
+    : enabled_(enabled && isatty(STDERR_FILENO)), start_(std::chrono::steady_clock::now()), budget_(budget_seconds) {}
 
 void ProgressBar::update(unsigned done, unsigned total) {
   if (!enabled_) return;
   constexpr int kWidth = 40;
-  const int filled = int(double(kWidth) * done / total);
   const double elapsed = seconds_since(start_);
-  const double remaining = done > 0 ? elapsed * (total - done) / done : 0.0;
-  std::fprintf(stderr, "\r[%s%s] %u/%u spp  %.1f s, %.1f s left ",
-               std::string(std::size_t(filled), '#').c_str(),
-               std::string(std::size_t(kWidth - filled), '.').c_str(), done, total, elapsed,
-               remaining);
+  const double fraction = budget_ ? std::min(elapsed / *budget_, 1.0) : double(done) / total;
+  const int filled = int(kWidth * fraction);
+  const double remaining = budget_ ? std::max(*budget_ - elapsed, 0.0)
+                                   : done > 0 ? elapsed * (total - done) / done : 0.0;
+  const std::string frames = budget_ ? std::to_string(done) : std::to_string(done) + "/" + std::to_string(total);
+  std::fprintf(stderr, "\r[%s%s] %s spp  %.1f s, %.1f s left ", std::string(std::size_t(filled), '#').c_str(),
+               std::string(std::size_t(kWidth - filled), '.').c_str(), frames.c_str(), elapsed, remaining);
   std::fflush(stderr);
   drawn_ = true;
 }
@@ -108,7 +110,9 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"out", options.out.string()},
         {"width", r.width},
         {"height", r.height},
-        {"spp", r.spp},
+        // The most frames (null: none, a time budget alone) and the time budget (null: none).
+        {"spp", options.time_seconds && r.spp == std::numeric_limits<unsigned>::max() ? nlohmann::json() : nlohmann::json(r.spp)},
+        {"time", options.time_seconds ? nlohmann::json(*options.time_seconds) : nlohmann::json()},
         {"strategy", result.strategy},
         {"lights", r.strategy.lights},
         {"seed", r.seed},

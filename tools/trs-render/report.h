@@ -2,6 +2,7 @@
 // What trs-render tells: a progress bar while it renders, a summary at the end, a JSON file.
 
 #include <chrono>
+#include <optional>
 #include <ostream>
 
 #include <nlohmann/json.hpp>
@@ -12,9 +13,10 @@
 namespace trs {
 
 /// A one-line bar redrawn in place on a terminal; nothing at all elsewhere (logs stay clean).
+/// With a time budget, the bar fills with the time spent rather than the frames done.
 class ProgressBar {
  public:
-  explicit ProgressBar(bool enabled);
+  explicit ProgressBar(bool enabled, std::optional<double> budget_seconds = {});
   void update(unsigned done, unsigned total);
   /// Ends the line, if one was drawn.
   void finish();
@@ -22,6 +24,7 @@ class ProgressBar {
  private:
   bool enabled_;
   bool drawn_ = false;
+  std::optional<double> budget_;
   std::chrono::steady_clock::time_point start_;
 };
 

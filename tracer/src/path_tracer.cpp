@@ -68,14 +68,17 @@ PathTracer::PathTracer(const Scene& scene, const Geometry& geometry, const Emitt
       strategy_(strategy),
       max_depth_(max_depth) {}
 
-glm::vec3 PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const {
-  glm::vec3 sum(0.0f), throughput(1.0f);
+PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const {
+  PathEstimate out;
+  glm::vec3& sum = out.radiance;
+  glm::vec3 throughput(1.0f);
   float bsdf_pdf = 0.0f;  // of the direction that reached this vertex; unused for camera rays
   for (unsigned depth = 0;; ++depth) {
     const std::optional<Hit> hit = geometry_.intersect(ray, kInfinity);
     ++rays;
     if (!hit) break;
     const Vertex vertex{*hit, surface_point(scene_, *hit), -ray.direction};
+    if (depth == 0) out.sees_emitter = emitters_.light_of(hit->triangle).has_value();
     sum += throughput * emitted(vertex, bsdf_pdf, depth == 0);
     if (depth == max_depth_) break;
 
@@ -94,7 +97,7 @@ glm::vec3 PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& rays)
     bsdf_pdf = s->pdf;
     ray = spawn(vertex.point.position, ng, s->wi);
   }
-  return sum;
+  return out;
 }
 
 /// Emission seen at a vertex, weighed against the light sample that could have found it.

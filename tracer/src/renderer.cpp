@@ -39,14 +39,17 @@ Camera scene_camera(const Scene& scene) {
 struct Accumulator {
   std::vector<double> rgb;
   std::vector<double> luminance_squared;
+  std::vector<std::uint32_t> emitter_hits;
 
-  explicit Accumulator(std::size_t pixels) : rgb(3 * pixels, 0.0), luminance_squared(pixels, 0.0) {}
+  explicit Accumulator(std::size_t pixels)
+      : rgb(3 * pixels, 0.0), luminance_squared(pixels, 0.0), emitter_hits(pixels, 0) {}
 
-  void add(const std::vector<glm::vec3>& frame) {
+  void add(const std::vector<PathEstimate>& frame) {
     for (std::size_t i = 0; i < frame.size(); ++i) {
-      for (int c = 0; c < 3; ++c) rgb[3 * i + c] += frame[i][c];
-      const double y = luminance(frame[i]);
+      for (int c = 0; c < 3; ++c) rgb[3 * i + c] += frame[i].radiance[c];
+      const double y = luminance(frame[i].radiance);
       luminance_squared[i] += y * y;
+      emitter_hits[i] += frame[i].sees_emitter ? 1 : 0;
     }
   }
 
@@ -54,8 +57,10 @@ struct Accumulator {
     const std::size_t pixels = luminance_squared.size();
     result.rgb.assign(3 * pixels, 0.0f);
     result.luminance_variance.assign(pixels, 0.0f);
+    result.emitter_fraction.assign(pixels, 0.0f);
     if (frames == 0) return;
     for (std::size_t i = 0; i < 3 * pixels; ++i) result.rgb[i] = float(rgb[i] / frames);
+    for (std::size_t i = 0; i < pixels; ++i) result.emitter_fraction[i] = float(double(emitter_hits[i]) / frames);
     if (frames < 2) return;
     for (std::size_t i = 0; i < pixels; ++i) {
       const double mean = trs::luminance(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]) / frames;
@@ -123,7 +128,7 @@ RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& pro
   result.strategy = s.strategy->name();
   result.light_device = s.strategy->device();
   Accumulator sums(pixels);
-  std::vector<glm::vec3> frame(pixels);
+  std::vector<PathEstimate> frame(pixels);
   tbb::combinable<std::uint64_t> rays, invalid;
   const auto start = Clock::now();
 
@@ -140,12 +145,13 @@ RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& pro
               PathRandom random(key, pixel, f);
               const auto jitter = random.floats();
               const Ray ray = s.camera.ray(float(x) + jitter[0], float(y) + jitter[1]);
-              glm::vec3 l = tracer.radiance(ray, random, tile_rays);
+              PathEstimate e = tracer.radiance(ray, random, tile_rays);
+              const glm::vec3& l = e.radiance;
               if (!std::isfinite(l.r + l.g + l.b)) {
                 ++invalid.local();
-                l = glm::vec3(0.0f);
+                e.radiance = glm::vec3(0.0f);
               }
-              frame[pixel] = l;
+              frame[pixel] = e;
             }
           }
         });
@@ -155,10 +161,11 @@ RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& pro
     result.light_frames.push_back(s.strategy->last_frame());
     result.frames = f + 1;
     if (progress) progress(result.frames, settings.spp);
+    if (settings.deadline && Clock::now() >= *settings.deadline) break;
   }
 
   result.render_seconds = seconds_since(start);
-  result.interrupted = result.frames < settings.spp;
+  result.interrupted = cancel && result.frames < settings.spp;
   result.paths = std::uint64_t(result.frames) * pixels;
   result.rays = rays.combine(std::plus<>());
   result.invalid_paths = invalid.combine(std::plus<>());

@@ -24,6 +24,12 @@ inline float power_heuristic(float a, float b) {
 /// An area density at a light point seen from a shading point, as a solid-angle density.
 float solid_angle_density(float area_density, float distance, float cos_at_light);
 
+/// One path's estimate.
+struct PathEstimate {
+  glm::vec3 radiance{0.0f};
+  bool sees_emitter = false;  ///< the camera ray's first hit is an emitter
+};
+
 class PathTracer {
  public:
   /// `max_depth`: most surface interactions a path scatters at; 0 shows emitters only, 1 is
@@ -32,7 +38,7 @@ class PathTracer {
              const LightStrategy& strategy, unsigned max_depth);
 
   /// Radiance arriving along `ray` (one estimate); adds the rays it traces to `rays`.
-  glm::vec3 radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const;
+  PathEstimate radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const;
 
  private:
   struct Vertex;

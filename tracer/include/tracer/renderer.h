@@ -3,7 +3,9 @@
 // frame draws a fresh set of point lights first.
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
+#include <optional>
 #include <functional>
 #include <memory>
 #include <string>
@@ -17,7 +19,9 @@ namespace tracer {
 struct RenderSettings {
   unsigned width = 640;
   unsigned height = 360;
-  unsigned spp = 16;        ///< frames
+  unsigned spp = 16;        ///< frames (with a deadline: the most frames)
+  /// No frame starts at or after this instant; the first always runs.
+  std::optional<std::chrono::steady_clock::time_point> deadline;
   unsigned max_depth = 4;   ///< see PathTracer
   std::uint64_t seed = 0;
   unsigned threads = 0;     ///< paths and CPU light sampler; 0: every hardware thread
@@ -34,13 +38,16 @@ struct RenderResult {
   /// Per-pixel variance of one path's luminance over the frames (unbiased; zero below two
   /// frames): the noise of one sample per pixel, comparable between strategies.
   std::vector<float> luminance_variance;
+  /// Per pixel, the fraction of its camera samples whose first hit is an emitter: where the
+  /// noise comes from the pixel footprint over an emitter, whatever the light strategy.
+  std::vector<float> emitter_fraction;
   std::vector<LightFrame> light_frames;  ///< per frame
   double setup_seconds = 0.0;         ///< scene acceleration structure, emitters, strategy
   double render_seconds = 0.0;        ///< the frames, light sampling included
   std::uint64_t paths = 0;
   std::uint64_t rays = 0;             ///< closest-hit and shadow rays traced
   std::uint64_t invalid_paths = 0;    ///< paths with a NaN or infinite estimate, counted as black
-  bool interrupted = false;           ///< stopped early by the cancel flag
+  bool interrupted = false;           ///< stopped early by the cancel flag (not by the deadline)
   std::string strategy;
   std::string light_device;           ///< the light sampler's backend and device, if any
 };
@@ -52,8 +59,9 @@ class Renderer {
   Renderer(const Scene& scene, const RenderSettings& settings);
   ~Renderer();
 
-  /// Renders settings.spp frames. `progress(done, total)` after each frame. When `cancel`
-  /// becomes true, the frame under way is dropped and the frames done so far are returned.
+  /// Renders settings.spp frames, or fewer by the deadline. `progress(done, total)` after each
+  /// frame. When `cancel` becomes true, the frame under way is dropped and the frames done so
+  /// far are returned.
   RenderResult render(const std::function<void(unsigned, unsigned)>& progress,
                       const std::atomic<bool>& cancel);
 
