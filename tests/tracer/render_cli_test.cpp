@@ -158,12 +158,14 @@ TEST_F(RenderCliTest, RendersEveryStrategy) {
 }
 
 // A time budget: frames until that much wall time has passed since the start, set-up included;
-// an explicit --spp caps them.
+// --spp on the command line caps them, a settings file's spp does not.
 TEST_F(RenderCliTest, TimeBudgetRendersUntilItIsSpent) {
   const fs::path exr = file("timed.exr"), json = file("timed.json");
-  const std::vector<std::string> args = {kScene.string(), "--width", "32", "--height", "18", "--lights",
-                                         "1000", "--max-depth", "2", "--threads", "2", "--quiet",
-                                         "--time", "2", "--out", exr.string(), "--stats", json.string()};
+  const fs::path settings = write_text("render.toml", "spp = 2\n");
+  const std::vector<std::string> args = {kScene.string(), "--settings", settings.string(), "--width", "32",
+                                         "--height", "18", "--lights", "1000", "--max-depth", "2", "--threads",
+                                         "2", "--quiet", "--time", "2", "--out", exr.string(), "--stats",
+                                         json.string()};
   const auto start = std::chrono::steady_clock::now();
   const RunResult result = run(args);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

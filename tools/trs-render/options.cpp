@@ -2,10 +2,12 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <iostream>
 #include <limits>
 #include <map>
 #include <string>
+#include <string_view>
 
 #include "common/cli_options.h"
 
@@ -95,7 +97,12 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   }
   if (app.count("--time") > 0) {
     options.time_seconds = time;
-    if (app.count("--spp") == 0) r.spp = std::numeric_limits<unsigned>::max();
+    // Only --spp on the command line caps a timed render; a settings file's spp is a default
+    // that the time budget replaces.
+    const bool spp_on_command_line = std::any_of(argv + 1, argv + argc, [](const char* a) {
+      return std::string_view(a) == "--spp" || std::string_view(a).starts_with("--spp=");
+    });
+    if (!spp_on_command_line) r.spp = std::numeric_limits<unsigned>::max();
   }
   r.strategy.kind = kStrategies.at(strategy);
   r.sampler.backend = kBackends.at(backend);
