@@ -102,9 +102,15 @@ void write_png_preview(const std::filesystem::path& file, std::uint32_t width, s
     const float clamped = value > 0.0f ? std::min(value, 1.0f) : 0.0f;  // NaN fails `> 0`
     return static_cast<unsigned char>(std::lround(clamped * 255.0f));
   });
+  write_png(file, width, height, bytes.data());
+}
+
+void write_png(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
+               const unsigned char* rgb) {
+  check_size(file, width, height);
   OIIO::ImageSpec spec(int(width), int(height), 3, OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", "sRGB");
-  write_atomically(file, "png", spec, bytes.data());
+  write_atomically(file, "png", spec, rgb);
 }
 
 Image read_exr(const std::filesystem::path& file) {

@@ -30,6 +30,11 @@ void write_exr(const std::filesystem::path& file, std::uint32_t width, std::uint
 void write_png_preview(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
                        const float* rgb, float exposure = 0.0f);
 
+/// Writes 8-bit RGB display values (3 per pixel, top row first) as they are, tagged sRGB: a
+/// false-colour map, say. Throws FileError naming `file`.
+void write_png(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
+               const unsigned char* rgb);
+
 /// Reads an OpenEXR file's first three channels (one grey channel is repeated); another format
 /// is an error, as comparing renders through an 8-bit file would compare its rounding.
 Image read_exr(const std::filesystem::path& file);
