@@ -16,6 +16,8 @@ packages=(
   libvulkan-dev glslang-tools spirv-tools mesa-vulkan-drivers vulkan-validationlayers
   # small libraries
   libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libstb-dev
+  # the noise study (trs-study): arrays, plots, EXR reading
+  python3-numpy python3-matplotlib python3-openimageio
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
 )
