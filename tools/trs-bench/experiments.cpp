@@ -53,7 +53,10 @@ std::map<std::pair<Backend, double>, double> run_floors(const ExperimentSettings
       r.target = target;
       r.backend = lightsampler::to_string(v.backend);
       r.engine = v.backend == Backend::vulkan ? "vk" : "cpu";
-      r.measured = Measurement{.runs = settings.measure.repeats, .samples = target, .total_ms = ms, .wall_ms = ms};
+      Measurement& m = r.measured.emplace();
+      m.runs = settings.measure.repeats;
+      m.samples = target;
+      m.total_ms = m.wall_ms = ms;
       r.floor_ms = ms;
       recorder.add(std::move(r));
     }

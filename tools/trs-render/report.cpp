@@ -173,7 +173,9 @@ void print_summary(std::ostream& out, const RenderOptions& options,
       out << line;
     }
   }
-  std::snprintf(line, sizeof line, "  relative variance per sample: %.4g\n",
+  std::snprintf(line, sizeof line,
+                "  relative variance per sample: %.4g (a self-estimate: it underestimates heavy tails; "
+                "measure noise against a reference)\n",
                 relative_variance(result));
   out << line;
 }

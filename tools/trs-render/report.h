@@ -24,8 +24,8 @@ class ProgressBar {
  private:
   bool enabled_;
   bool drawn_ = false;
-  std::optional<double> budget_;
   std::chrono::steady_clock::time_point start_;
+  std::optional<double> budget_;
 };
 
 /// Mean over pixels of the per-sample luminance variance relative to the squared mean (plus

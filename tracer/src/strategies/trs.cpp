@@ -35,7 +35,10 @@ class TrsStrategy : public LightStrategy {
 
   void begin_frame(std::uint64_t frame) override {
     const std::uint64_t seed = lightsampler::mix64(seed_ ^ lightsampler::mix64(frame));
-    sampler_.generate({.seed = seed, .target_count = target_}, frame_);
+    lightsampler::FrameRequest request;
+    request.seed = seed;
+    request.target_count = target_;
+    sampler_.generate(request, frame_);
     if (frame_.sample_count >= 0x1p32)
       throw std::runtime_error("the light sampler drew 2^32 lights or more in one frame");
     scale_ = frame_.sample_count > 0 ? float(target_ / double(frame_.sample_count)) : 0.0f;
