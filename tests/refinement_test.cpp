@@ -195,3 +195,21 @@ TEST(Refinement, NearTheTexelScaleKeepsOnlySplitsThatPay) {
   const DensityMapView sparse = spot.view();
   EXPECT_GT(RefinedMesh(mesh.view(), {&sparse, 1}, refine).levels(), 0u);
 }
+
+TEST(Refinement, KeepsASplitThatPaysOnlyOneRoundLater) {
+  // One triangle, UVs (0,0), (1,0), (0,1), over 2048 texels of a 64 x 64 map lit only along the
+  // row and the column of texels at 3/8: the strokes cross every quarter of the triangle, so one
+  // split keeps the bound where it was, and is not kept when no second round may follow. Two
+  // rounds leave most parts' parts off the strokes, and the first split is kept for them.
+  trs_test::Mesh mesh;
+  const float corners[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, uvs[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+  mesh.add_triangle(corners, uvs);
+  trs_test::Map cross{std::vector<float>(64 * 64, 0.0f), 64, 64};
+  for (int i = 0; i < 64; ++i) cross.texels[24 * 64 + i] = cross.texels[i * 64 + 24] = 1.0f;
+  const DensityMapView view = cross.view();
+  Refinement one_round{.min_acceptance = 0.9f, .min_texels = 0.25f, .gain_texels = 1e9f, .max_levels = 1};
+  EXPECT_EQ(RefinedMesh(mesh.view(), {&view, 1}, one_round).levels(), 0u);
+  Refinement two_rounds = one_round;
+  two_rounds.max_levels = 2;
+  EXPECT_EQ(RefinedMesh(mesh.view(), {&view, 1}, two_rounds).levels(), 2u);
+}

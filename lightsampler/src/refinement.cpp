@@ -45,6 +45,50 @@ double texel_area(const core::TexelTriangle& t) {
   return 0.5 * std::abs(double(t.edge1[0]) * t.edge2[1] - double(t.edge1[1]) * t.edge2[0]);
 }
 
+double bound_of_four(const std::vector<Measure>& measured, std::size_t first) {
+  double bound = 0.0;
+  for (std::size_t c = first; c < first + 4; ++c) bound += measured[c].bound;
+  return bound;
+}
+
+/// Whether each tried split pays (children: the four parts of each tried part, in order). A
+/// part larger than gain_texels splits freely. A smaller one splits if its parts draw
+/// min_split_gain times fewer candidates than the whole, or if two rounds of splits draw
+/// min_split_gain squared times fewer (if a second round is allowed, look_ahead): a stroke that
+/// crosses all four parts can leave most of their parts off it.
+template <class Measurer>
+std::vector<bool> splits_that_pay(const std::vector<std::size_t>& tried, const std::vector<Measure>& measured,
+                                  const std::vector<Part>& children, const std::vector<Measure>& child_measured,
+                                  const Refinement& refinement, bool look_ahead, const Measurer& measure) {
+  std::vector<bool> pays(tried.size());
+  std::vector<std::size_t> undecided;
+  std::vector<Part> grandchildren;
+  for (std::size_t k = 0; k < tried.size(); ++k) {
+    const Measure& whole = measured[tried[k]];
+    pays[k] = whole.texels > refinement.gain_texels ||
+              bound_of_four(child_measured, 4 * k) * refinement.min_split_gain <= whole.bound;
+    if (pays[k] || !look_ahead) continue;
+    undecided.push_back(k);
+    for (std::size_t c = 4 * k; c < 4 * k + 4; ++c) split(children[c], grandchildren);
+  }
+  if (undecided.empty()) return pays;
+  const std::vector<Measure> grand_measured = measure(grandchildren);
+  for (std::size_t j = 0; j < undecided.size(); ++j) {
+    const std::size_t k = undecided[j];
+    double bound = 0.0;
+    for (std::size_t c = 0; c < 4; ++c) {
+      // A part counts as split again only where the next round would try it and it pays.
+      const Measure& child = child_measured[4 * k + c];
+      const double parts = bound_of_four(grand_measured, 16 * j + 4 * c);
+      const bool splits = child.acceptance < refinement.min_acceptance && child.texels > refinement.min_texels &&
+                          parts * refinement.min_split_gain <= child.bound;
+      bound += splits ? parts : child.bound;
+    }
+    pays[k] = bound * refinement.min_split_gain * refinement.min_split_gain <= measured[tried[k]].bound;
+  }
+  return pays;
+}
+
 }  // namespace
 
 RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> maps,
@@ -82,15 +126,14 @@ RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> m
       }
     if (tried.empty()) break;
     child_measured = measure(children);
+    const bool look_ahead = level + 1 < refinement.max_levels;
+    const std::vector<bool> pays =
+        splits_that_pay(tried, measured, children, child_measured, refinement, look_ahead, measure);
     next.clear();
     next_measured.clear();
     std::vector<bool> kept(open.size(), false);
     for (std::size_t k = 0; k < tried.size(); ++k) {
-      double bound = 0.0;
-      for (std::size_t c = 4 * k; c < 4 * k + 4; ++c) bound += child_measured[c].bound;
-      const Measure& whole = measured[tried[k]];
-      const bool pays = whole.texels > refinement.gain_texels || bound * refinement.min_split_gain <= whole.bound;
-      if (!pays || total + 3 > refinement.max_triangles) continue;
+      if (!pays[k] || total + 3 > refinement.max_triangles) continue;
       kept[tried[k]] = true;
       total += 3;
       next.insert(next.end(), children.begin() + std::ptrdiff_t(4 * k), children.begin() + std::ptrdiff_t(4 * k + 4));

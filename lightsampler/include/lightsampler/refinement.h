@@ -39,8 +39,11 @@ struct Refinement {
   /// Keep a split of a triangle of at most gain_texels texels only if its four parts draw at
   /// least this many times fewer candidates than the whole (the sum of D^max times area over
   /// the parts, against the whole's): near the texel scale a split that barely lowers the bound,
-  /// as on texel noise, costs counting work every frame and saves little. Larger triangles split
-  /// freely, since a pattern finer than them may only pay off a few splits down.
+  /// as on texel noise, costs counting work every frame and saves little. It is also kept if
+  /// two rounds draw min_split_gain squared times fewer (the parts' own splits counted where
+  /// they pay): a thin stroke across all four parts may leave most of their parts off it.
+  /// Larger triangles split freely, since a pattern finer than them may only pay off a few
+  /// splits down.
   float min_split_gain = 1.25f;
   float gain_texels = 16.0f;
   /// Splits of one triangle at most (a triangle becomes at most 4^max_levels parts).
