@@ -49,8 +49,8 @@ class Study(unittest.TestCase):
     def test_one_row_per_image_with_the_named_columns(self):
         rows = self.rows()
         self.assertEqual(len(rows), len(STRATEGIES) * 3 * 2)  # (2 spp + 1 time) x 2 seeds
-        self.assertEqual(list(rows[0].keys())[:11], ["strategy", "spp", "time", "seed", "seconds", "frames",
-                                                      "relmse", "relmse_lit", "rmse", "mean_ratio", "image"])
+        self.assertEqual(list(rows[0].keys())[:12], ["strategy", "spp", "time", "seed", "seconds", "frames",
+                                                      "relmse", "relmse_lit", "rmse", "mean_ratio", "image", "lights"])
         for r in rows:
             self.assertTrue((self.out / r["image"]).is_file(), r["image"])
             if r["time"]:
@@ -81,6 +81,41 @@ class Study(unittest.TestCase):
         collected = study("--collect", self.out)
         self.assertEqual(collected.returncode, 0, collected.stderr)
         self.assertEqual((self.out / "results.csv").read_text(), before)
+
+    def test_resume_renders_only_what_is_missing(self):
+        images = self.out / "images"
+        gone = images / "trs-spp2-seed2"
+        for suffix in [".exr", ".json"]:
+            gone.with_suffix(suffix).unlink()
+        kept = {f: f.stat().st_mtime_ns for f in images.iterdir()}
+        resumed = study(*self.args, "--resume")
+        self.assertEqual(resumed.returncode, 0, resumed.stderr)
+        self.assertTrue(gone.with_suffix(".exr").is_file())
+        self.assertEqual({f: f.stat().st_mtime_ns for f in kept}, kept)
+        self.assertEqual(len(self.rows()), len(STRATEGIES) * 3 * 2)
+
+    def test_summary_gives_each_ratio_with_its_range_over_seeds(self):
+        summary = (self.out / "summary.md").read_text()
+        self.assertRegex(summary, r"\| 4 \| [0-9.e+-]+ \| [0-9.]+x \([0-9.]+–[0-9.]+\) \|")
+        self.assertRegex(summary, r"every ratio lies within ±[0-9]+ % of its median")
+
+
+class LightsSweep(unittest.TestCase):
+    """--lights with several counts renders every setting at each and plots relMSE against them."""
+
+    def test_every_light_count_is_rendered_and_plotted(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = Path(tmp) / "sweep"
+            done = study(TOOLS.scene, "--out", out, "--render", TOOLS.render, "--strategies", "uniform,trs",
+                         "--spp", "2", "--seeds", "1", "--reference-spp", "8", "--width", "32", "--height", "18",
+                         "--lights", "1e3,4e3", "--quiet")
+            self.assertEqual(done.returncode, 0, done.stderr)
+            with open(out / "results.csv") as f:
+                rows = list(csv.DictReader(f))
+            self.assertEqual(sorted((r["strategy"], float(r["lights"])) for r in rows),
+                             [("trs", 1e3), ("trs", 4e3), ("uniform", 1e3), ("uniform", 4e3)])
+            self.assertEqual((out / "lights.png").read_bytes()[:8], b"\x89PNG\r\n\x1a\n")
+            self.assertIn("trs, 4000 lights", (out / "summary.md").read_text())
 
 
 if __name__ == "__main__":
