@@ -26,7 +26,7 @@ class Study(unittest.TestCase):
         cls.tmp = tempfile.TemporaryDirectory()
         cls.out = Path(cls.tmp.name) / "study"
         cls.args = [TOOLS.scene, "--out", cls.out, "--render", TOOLS.render, "--spp", "2,4", "--time", "0.3",
-                    "--seeds", "2", "--reference-spp", "32", "--width", "48", "--height", "27", "--lights", "10000",
+                    "--seeds", "2", "--reference-spp", "32", "--width", "64", "--height", "36", "--lights", "10000",
                     "--quiet"]
         cls.result = study(*cls.args)
 
@@ -49,8 +49,9 @@ class Study(unittest.TestCase):
     def test_one_row_per_image_with_the_named_columns(self):
         rows = self.rows()
         self.assertEqual(len(rows), len(STRATEGIES) * 3 * 2)  # (2 spp + 1 time) x 2 seeds
-        self.assertEqual(list(rows[0].keys())[:12], ["strategy", "spp", "time", "seed", "seconds", "frames",
-                                                      "relmse", "relmse_lit", "rmse", "mean_ratio", "image", "lights"])
+        self.assertEqual(list(rows[0].keys())[:13], ["strategy", "spp", "time", "seed", "seconds", "frames",
+                                                      "relmse", "relmse_lit", "rmse", "mean_ratio", "image", "lights",
+                                                      "relmse_lit_32"])
         for r in rows:
             self.assertTrue((self.out / r["image"]).is_file(), r["image"])
             if r["time"]:
@@ -70,6 +71,26 @@ class Study(unittest.TestCase):
                 expected = json.loads(figures.read_text())["overall"]["relmse"]
                 self.assertAlmostEqual(float(r[column]) / expected, 1.0, places=5, msg=f"{r['image']} {column}")
 
+    def test_block_relmse_agrees_with_a_direct_sum_over_blocks(self):
+        import numpy as np
+        import OpenImageIO as oiio
+
+        def read(path):
+            return np.asarray(oiio.ImageBuf(str(path)).get_pixels(oiio.FLOAT), dtype=np.float64)[:, :, :3]
+
+        reference, mask = read(self.out / "reference.exr"), read(self.out / "emitter-mask.exr")[:, :, 0]
+        for r in self.rows():
+            image, terms = read(self.out / r["image"]), []
+            for y in range(0, reference.shape[0] - 31, 32):
+                for x in range(0, reference.shape[1] - 31, 32):
+                    if mask[y:y + 32, x:x + 32].any():
+                        continue
+                    a = image[y:y + 32, x:x + 32].mean(axis=(0, 1))
+                    b = reference[y:y + 32, x:x + 32].mean(axis=(0, 1))
+                    terms += list((a - b) ** 2 / (b ** 2 + 0.01))
+            self.assertTrue(terms)
+            self.assertAlmostEqual(float(r["relmse_lit_32"]) / np.mean(terms), 1.0, places=6, msg=r["image"])
+
     def test_plan_prints_one_render_per_line_and_collect_measures_them(self):
         planned = study(*self.args, "--plan")
         self.assertEqual(planned.returncode, 0, planned.stderr)
@@ -87,10 +108,18 @@ class Study(unittest.TestCase):
         gone = images / "trs-spp2-seed2"
         for suffix in [".exr", ".json"]:
             gone.with_suffix(suffix).unlink()
-        kept = {f: f.stat().st_mtime_ns for f in images.iterdir()}
+        cut_short = images / "uniform-spp4-seed1.json"  # as an interrupted render leaves it
+        stats = json.loads(cut_short.read_text())
+        cut_short.write_text(json.dumps(dict(stats, interrupted=True)))
+        collected = study("--collect", self.out)
+        self.assertIn("an interrupted render, left out", collected.stderr)
+        self.assertEqual(len(self.rows()), len(STRATEGIES) * 3 * 2 - 2)
+        kept = {f: f.stat().st_mtime_ns for f in images.iterdir() if f.stem != cut_short.stem}
         resumed = study(*self.args, "--resume")
         self.assertEqual(resumed.returncode, 0, resumed.stderr)
+        self.assertNotIn("interrupted", resumed.stderr)
         self.assertTrue(gone.with_suffix(".exr").is_file())
+        self.assertFalse(json.loads(cut_short.read_text())["interrupted"])
         self.assertEqual({f: f.stat().st_mtime_ns for f in kept}, kept)
         self.assertEqual(len(self.rows()), len(STRATEGIES) * 3 * 2)
 

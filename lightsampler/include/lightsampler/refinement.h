@@ -24,9 +24,9 @@ namespace lightsampler {
 
 /// The subdivision's acceptance target that the tools take by default (`--refine auto`).
 /// Measured with trs-bench at 1e8 samples on the CPU backend (docs/benchmarks.md): with the
-/// split gain rule below, a high target raises the acceptance on sparse maps from 37% to 57%
-/// (frames 30% faster) and costs high-frequency maps about 5% (their splits near the texel
-/// scale do not pay and are not kept).
+/// split gain rule below and its look-ahead, a high target raises the acceptance on sparse
+/// maps from 37% to 62-64% (frames about 45% faster) and costs high-frequency maps about 5% (their
+/// splits near the texel scale do not pay and are not kept).
 inline constexpr float kAutoMinAcceptance = 0.85f;
 
 struct Refinement {
