@@ -11,6 +11,7 @@
 
 #include "lightsampler/sampler.h"
 #include "sampler_fixtures.h"
+#include "same_frame.h"
 #include "core/validate.h"
 
 using namespace lightsampler;
@@ -227,6 +228,33 @@ TEST(EdgeCases, UpdatedMapChangesTheNextFrame) {
   for (const Sample& s : frame.samples) ASSERT_GE(lightsampler::uv(mesh.view(), s).x, 0.5f);
   EXPECT_EQ(sampler->density(0, 0.0f, 0.0f), 0.0f);
   EXPECT_THROW(sampler->update_map(1, right.view()), std::out_of_range);
+}
+
+TEST(EdgeCases, CountsAreKeptUntilAMapChangesThenRecountedAsNew) {
+  // N-bar_T and D_T^max change only with a map: frames count nothing until update_map, then
+  // recount the triangles of that map alone. The frame is then the one a new sampler over the
+  // new maps gives, bit for bit.
+  Mesh mesh = trs_test::random_triangles(300, 0.0f, 1.0f, 5);
+  for (std::uint32_t t = 0; t < 300; ++t) mesh.triangle_maps.push_back(t % 7 == 0 ? kNoMap : t % 2);
+  std::vector<Map> maps = {trs_test::random_map(32, 32, 0.5, 6), trs_test::random_map(16, 16, 0.5, 7)};
+  const std::vector<DensityMapView> views = {maps[0].view(), maps[1].view()};
+  auto sampler = make_cpu_sampler(mesh.view(), views);
+  Frame frame;
+  sampler->generate(target(1e5, 1), frame);
+  EXPECT_EQ(frame.counting_used, Counting::cpu);
+  const std::vector<double> first(frame.expected_counts.span().begin(), frame.expected_counts.span().end());
+  sampler->generate(target(1e5, 2), frame);
+  EXPECT_EQ(frame.counting_used, std::nullopt);
+  EXPECT_TRUE(std::equal(first.begin(), first.end(), frame.expected_counts.span().begin()));
+
+  for (const auto& [index, map] : {std::pair{1, trs_test::random_map(24, 24, 0.5, 8)},     // a new size
+                                   std::pair{0, trs_test::random_map(32, 32, 0.2, 9)}}) {  // in place
+    maps[std::size_t(index)] = map;
+    sampler->update_map(std::size_t(index), maps[std::size_t(index)].view());
+    sampler->generate(target(1e5, 3), frame);
+    EXPECT_EQ(frame.counting_used, Counting::cpu);
+    trs_test::expect_same_frames(frame, run(mesh, maps, target(1e5, 3)));
+  }
 }
 
 TEST(EdgeCases, SameSeedSameSamplesOnAnyThreadCount) {

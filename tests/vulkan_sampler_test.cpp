@@ -481,6 +481,35 @@ TEST_F(VulkanSampler, UpdatedMapChangesTheNextFrame) {
     ASSERT_GE(lightsampler::uv(mesh.view(), s).x, 0.5f);
 }
 
+TEST_F(VulkanSampler, CountsAreKeptUntilAMapChanges) {
+  // N-bar_T and D_T^max stay on the device between frames: a frame counts nothing until
+  // update_map (or another counting path), and then counts as a new sampler over the new maps.
+  const Mesh mesh = trs_test::random_triangles(300, 0.0f, 1.0f, 41);
+  std::vector<Map> maps = {trs_test::random_map(32, 32, 0.5, 42)};
+  auto sampler = gpu(mesh, maps);
+  const Frame first = generate(*sampler, {.seed = 1, .target_count = 1e5});
+  EXPECT_EQ(first.counting_used, Counting::automatic);
+  const Frame kept = generate(*sampler, {.seed = 2, .target_count = 1e5});
+  EXPECT_EQ(kept.counting_used, std::nullopt);
+  EXPECT_EQ(kept.expected_total, first.expected_total);
+  for (std::size_t t = 0; t < first.counts.size(); ++t)
+    ASSERT_TRUE(kept.expected_counts[t] == first.expected_counts[t] && kept.max_density[t] == first.max_density[t]);
+  EXPECT_EQ(generate(*sampler, {.seed = 2, .target_count = 1e5, .vulkan = {.counting = Counting::per_triangle}})
+                .counting_used,
+            Counting::per_triangle);
+
+  maps[0] = trs_test::random_map(24, 24, 0.2, 43);
+  sampler->update_map(0, maps[0].view());
+  const Frame updated = generate(*sampler, {.seed = 3, .target_count = 1e5});
+  EXPECT_EQ(updated.counting_used, Counting::automatic);
+  const Frame fresh = generate(*gpu(mesh, maps), {.seed = 3, .target_count = 1e5});
+  for (std::size_t t = 0; t < fresh.counts.size(); ++t) {
+    ASSERT_NEAR(updated.expected_counts[t], fresh.expected_counts[t], 1e-5 * fresh.expected_counts[t]) << t;
+    ASSERT_EQ(updated.max_density[t], fresh.max_density[t]) << t;
+  }
+  EXPECT_GT(expect_same_samples_where_counts_agree(fresh, updated), fresh.counts.size() * 9 / 10);
+}
+
 TEST_F(VulkanSampler, TheWriteFloorIsAGpuTime) {
   // 17 million samples: the kernel's grid-stride loop covers more than 65535 workgroups' worth.
   const double ms = sample_write_ms(Backend::vulkan, {.vulkan = {.validation = true}}, 17'000'000, 2);

@@ -85,7 +85,9 @@ struct Frame {
   std::uint64_t exhausted = 0;      ///< slots filled after max_tries rejections in a row
   Method method = Method::trs;
   ScanOrder scan_used = ScanOrder::ordered;
-  std::optional<Counting> counting_used;  ///< the counting path that ran; none when not counted
+  /// The counting path that ran; none when the counts of an earlier frame still held (no map
+  /// replaced since) or the frame needed none.
+  std::optional<Counting> counting_used;
   std::vector<PassTime> passes;     ///< time per pass, in order
   double total_ms = 0;
 };
@@ -103,7 +105,9 @@ class Sampler {
   virtual std::size_t map_count() const = 0;
 
   /// Replaces density map `index` (size, addressing and scale may change). Throws
-  /// std::invalid_argument on a bad map, std::out_of_range on a bad index.
+  /// std::invalid_argument on a bad map, std::out_of_range on a bad index. N-bar_T and D_T^max
+  /// are kept between frames and counted again only after this: on the CPU backend the
+  /// triangles of this map alone, on the Vulkan backend every triangle.
   virtual void update_map(std::size_t index, const DensityMapView& map) = 0;
 
   /// Generates one frame into `frame`.

@@ -174,15 +174,16 @@ TriangleIntegral integrate_triangle(const TriangleRecord& triangle, const TexelT
   return {acc.sum * (double(triangle.area) / uv_area), acc.max};
 }
 
-double count(std::span<const TriangleRecord> triangles,
-             std::span<const TexelTriangle> texel_triangles, std::span<const DensityMap> maps,
-             Buffer<double>& expected_counts, Buffer<float>& max_density) {
-  const std::size_t n = triangles.size();
-  expected_counts.resize(n);
-  max_density.resize(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
+namespace {
+
+template <class Selected>
+double count_selected(std::span<const TriangleRecord> triangles, std::span<const TexelTriangle> texel_triangles,
+                      std::span<const DensityMap> maps, const Selected& selected, Buffer<double>& expected_counts,
+                      Buffer<float>& max_density) {
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        if (!selected(triangles[i])) continue;
                         const TriangleIntegral integral =
                             integrate_triangle(triangles[i], texel_triangles[i], maps);
                         expected_counts[i] = integral.expected;
@@ -190,6 +191,25 @@ double count(std::span<const TriangleRecord> triangles,
                       }
                     });
   return sum(expected_counts.span());
+}
+
+}  // namespace
+
+double count(std::span<const TriangleRecord> triangles,
+             std::span<const TexelTriangle> texel_triangles, std::span<const DensityMap> maps,
+             Buffer<double>& expected_counts, Buffer<float>& max_density) {
+  expected_counts.resize(triangles.size());
+  max_density.resize(triangles.size());
+  return count_selected(triangles, texel_triangles, maps, [](const TriangleRecord&) { return true; },
+                        expected_counts, max_density);
+}
+
+double recount(std::span<const TriangleRecord> triangles, std::span<const TexelTriangle> texel_triangles,
+               std::span<const DensityMap> maps, std::span<const std::uint8_t> stale,
+               Buffer<double>& expected_counts, Buffer<float>& max_density) {
+  return count_selected(triangles, texel_triangles, maps,
+                        [&](const TriangleRecord& t) { return t.map < stale.size() && stale[t.map] != 0; },
+                        expected_counts, max_density);
 }
 
 double sum(std::span<const double> values) {

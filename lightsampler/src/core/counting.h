@@ -3,6 +3,7 @@
 // density over each triangle. The CPU backend's counting pass, and what the adaptive subdivision
 // measures its triangles with.
 
+#include <cstdint>
 #include <span>
 
 #include "core/density.h"
@@ -15,6 +16,12 @@ namespace lightsampler::core {
 /// Section 4) and the max density D_T^max over the texels it overlaps. Returns N-bar.
 double count(std::span<const TriangleRecord> triangles, std::span<const TexelTriangle> texel_triangles,
              std::span<const DensityMap> maps, Buffer<double>& expected_counts, Buffer<float>& max_density);
+
+/// As count(), for the triangles whose map is marked in `stale` (indexed by map) only; the others
+/// keep their values. The same integrals and the same sum: the same results as count().
+double recount(std::span<const TriangleRecord> triangles, std::span<const TexelTriangle> texel_triangles,
+               std::span<const DensityMap> maps, std::span<const std::uint8_t> stale,
+               Buffer<double>& expected_counts, Buffer<float>& max_density);
 
 /// Sum in a fixed order, whatever the thread count: totals must be reproducible.
 double sum(std::span<const double> values);

@@ -1,6 +1,7 @@
 // The CPU backend: the passes of cpu/passes.h strung together, timed, on a TBB arena of the
 // requested size.
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <string>
@@ -50,7 +51,8 @@ class CpuSampler final : public Sampler {
   CpuSampler(const MeshView& mesh, std::span<const DensityMapView> maps, const CpuOptions& options)
       : arena_(int(worker_threads(options))),
         device_(cpu_model()),
-        scene_(arena_.execute([&] { return core::HostScene(mesh, maps); })) {}
+        scene_(arena_.execute([&] { return core::HostScene(mesh, maps); })),
+        stale_(maps.size(), 0) {}
 
   Backend backend() const override { return Backend::cpu; }
   std::string device() const override { return device_; }
@@ -59,6 +61,7 @@ class CpuSampler final : public Sampler {
 
   void update_map(std::size_t index, const DensityMapView& map) override {
     arena_.execute([&] { scene_.update_map(index, map); });
+    stale_[index] = 1;
   }
 
   float density(std::uint32_t triangle, float b1, float b2) const override {
@@ -82,13 +85,30 @@ class CpuSampler final : public Sampler {
   }
 
  private:
+  /// N-bar_T and D_T^max change only through update_map: a frame recounts the triangles of the
+  /// maps replaced since the last count, and copies the rest.
   void counting_pass(Frame& frame, Stopwatch& pass) {
-    const double total = core::count(scene_.triangles(), scene_.texel_triangles(), scene_.maps(), frame.expected_counts,
-                                    frame.max_density);
-    core::validate_expected_total(total);
-    frame.expected_total = total;
-    frame.counting_used = Counting::cpu;
+    const bool recount = !counted_ || std::find(stale_.begin(), stale_.end(), 1) != stale_.end();
+    if (!counted_)
+      expected_total_ = core::count(scene_.triangles(), scene_.texel_triangles(), scene_.maps(), expected_counts_,
+                                    max_density_);
+    else if (recount)
+      expected_total_ = core::recount(scene_.triangles(), scene_.texel_triangles(), scene_.maps(), stale_,
+                                      expected_counts_, max_density_);
+    counted_ = true;
+    std::fill(stale_.begin(), stale_.end(), 0);
+    core::validate_expected_total(expected_total_);
+    copy(expected_counts_, frame.expected_counts);
+    copy(max_density_, frame.max_density);
+    frame.expected_total = expected_total_;
+    frame.counting_used = recount ? std::optional(Counting::cpu) : std::nullopt;
     frame.passes.push_back({Pass::counting, pass.lap_ms()});
+  }
+
+  template <class T>
+  static void copy(const Buffer<T>& from, Buffer<T>& to) {
+    to.resize(from.size());
+    std::copy(from.span().begin(), from.span().end(), to.span().begin());
   }
 
   void generate_trs(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
@@ -154,6 +174,11 @@ class CpuSampler final : public Sampler {
   tbb::task_arena arena_;
   std::string device_;
   core::HostScene scene_;
+  bool counted_ = false;
+  std::vector<std::uint8_t> stale_;  ///< per map: replaced since the last count
+  Buffer<double> expected_counts_;
+  Buffer<float> max_density_;
+  double expected_total_ = 0.0;
   Buffer<double> area_cdf_;
   std::vector<std::uint32_t> area_guide_;
 };

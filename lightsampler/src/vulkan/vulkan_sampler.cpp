@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -83,7 +84,10 @@ class VulkanSampler final : public Sampler {
   std::uint64_t triangle_count() const override { return scene_.triangle_count(); }
   std::size_t map_count() const override { return scene_.host().maps().size(); }
 
-  void update_map(std::size_t index, const DensityMapView& map) override { scene_.update_map(index, map); }
+  void update_map(std::size_t index, const DensityMapView& map) override {
+    scene_.update_map(index, map);
+    counted_.reset();
+  }
 
   float density(std::uint32_t triangle, float b1, float b2) const override {
     return scene_.host().density(triangle, b1, b2);
@@ -103,6 +107,7 @@ class VulkanSampler final : public Sampler {
  private:
   /// A frame's commands, starting from zero totals.
   Commands begin_frame_commands() {
+    counting_.reset();
     Commands c = context_->begin();
     c.fill(buffers_.totals, 0, sizeof(gpu::FrameTotals), 0);
     c.barrier();
@@ -113,6 +118,7 @@ class VulkanSampler final : public Sampler {
   gpu::FrameTotals submit(Commands& c, Frame& frame) {
     c.copy(buffers_.totals, 0, buffers_.totals_readback, 0, sizeof(gpu::FrameTotals));
     add_passes(frame, context_->submit(c));
+    if (counting_) counted_ = counting_;
     gpu::FrameTotals t;
     std::memcpy(&t, buffers_.totals_readback.mapped(), sizeof t);
     return t;
@@ -129,12 +135,23 @@ class VulkanSampler final : public Sampler {
             buffers_.totals.address(), scene_.triangle_count(), small_cells};
   }
 
-  /// Counting (Algorithm 2, lines 1-8) and the total N-bar, recorded into `c`.
+  /// Counting (Algorithm 2, lines 1-8) and the total N-bar, recorded into `c`. N-bar_T and
+  /// D_T^max stay in their buffers between frames: a frame counts only after update_map, or when
+  /// it asks for another counting path; otherwise it only sums the total.
   void record_counting(Commands& c, const FrameRequest& request, Frame& frame) {
     const Counting path = request.vulkan.counting;
     if (path == Counting::cpu)
       throw std::invalid_argument("the Vulkan backend has no CPU counting path; ask for raster, compute or per-triangle");
     const gpu::CountingPush push = count_push(path == Counting::automatic ? scene_.small_triangle_cells() : 0);
+    const std::uint32_t groups = workgroups_for(scene_.triangle_count());
+    if (counted_ != path) record_triangle_counts(c, path, push, frame);
+    c.dispatch(pipelines_.counting_total, &push, sizeof push, groups);
+    c.barrier();
+    c.timestamp(to_string(Pass::counting));
+  }
+
+  /// N-bar_T and D_T^max of every triangle by `path`; counted_ once the commands have run.
+  void record_triangle_counts(Commands& c, Counting path, const gpu::CountingPush& push, Frame& frame) {
     const std::uint32_t groups = workgroups_for(scene_.triangle_count());
     c.dispatch(pipelines_.counting_setup, &push, sizeof push, groups);
     c.barrier();
@@ -158,9 +175,7 @@ class VulkanSampler final : public Sampler {
       }
       frame.counting_used = path == Counting::automatic ? Counting::automatic : Counting::compute;
     }
-    c.dispatch(pipelines_.counting_total, &push, sizeof push, groups);
-    c.barrier();
-    c.timestamp(to_string(Pass::counting));
+    counting_ = path;
   }
 
   /// The paper's counting: every map's triangles rasterized in its texel space, one draw per
@@ -380,6 +395,8 @@ class VulkanSampler final : public Sampler {
   FrameBuffers buffers_;
   std::unique_ptr<vk::RasterPipeline> raster_;
   std::uint64_t last_count_ = 0;  ///< N of the last frame without a target: the next one's bound
+  std::optional<Counting> counted_;   ///< the path whose counts the buffers hold; none: to count
+  std::optional<Counting> counting_;  ///< the path the commands being recorded count by
 };
 
 }  // namespace
