@@ -160,7 +160,8 @@ void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& set
             result.estimate_ms = *estimate;
             series[k].add(target, *estimate, series[k].points.back().fixed_ms);
           } else {
-            result.measured = measure(sampler, frame, request, kFirstSeed, settings.measure);
+            const lightsampler::DensityMapView view = map.view();
+            result.measured = measure(sampler, frame, request, kFirstSeed, settings.measure, {&view, 1});
             series[k].add(target, result.measured->total_ms, SeriesTime::fixed_ms_of(*result.measured));
             if (request.method == Method::trs) result.scan = result.measured->scan_used;
           }
@@ -187,7 +188,8 @@ void run_scan_experiment(const Inputs& inputs, const ExperimentSettings& setting
           request.vulkan.read_back = false;
           CaseResult result = describe_case("scan", mesh, map, *sampler, request,
                                             lightsampler::to_string(sampler->backend()), settings);
-          result.measured = measure(*sampler, frame, request, kFirstSeed, settings.measure);
+          const lightsampler::DensityMapView view = map.view();
+          result.measured = measure(*sampler, frame, request, kFirstSeed, settings.measure, {&view, 1});
           result.scan = result.measured->scan_used;
           recorder.add(std::move(result));
         }

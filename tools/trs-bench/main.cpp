@@ -212,6 +212,9 @@ int main(int argc, char** argv) {
                  "and a case stops repeating once it has used it")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_flag("--recount", cl.settings.measure.recount,
+               "Replace the maps before every frame (an animated texture): every frame counts. "
+               "Without it a sampler counts once and keeps the counts");
   app.add_option("--scan-target", cl.settings.scan_target,
                  "Target sample count of the scan experiment")
       ->check(CLI::PositiveNumber)

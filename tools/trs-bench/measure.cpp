@@ -47,14 +47,18 @@ double median(std::vector<double> values) {
 
 Measurement measure(lightsampler::Sampler& sampler, lightsampler::Frame& frame,
                     lightsampler::FrameRequest request, std::uint64_t first_seed,
-                    const MeasureSettings& settings) {
+                    const MeasureSettings& settings, std::span<const lightsampler::DensityMapView> maps) {
   const auto start = Clock::now();
   const auto within_budget = [&] { return seconds_since(start) < settings.budget_s; };
+  const auto generate = [&] {
+    if (settings.recount)
+      for (std::size_t i = 0; i < maps.size(); ++i) sampler.update_map(i, maps[i]);
+    sampler.generate(request, frame);
+  };
 
   // Warm-up: first touch of the frame's buffers, the thread pool, the caches.
   request.seed = first_seed;
-  for (int i = 0; i < settings.warmup && within_budget(); ++i, ++request.seed)
-    sampler.generate(request, frame);
+  for (int i = 0; i < settings.warmup && within_budget(); ++i, ++request.seed) generate();
 
   Measurement m;
   PassSeries passes;
@@ -62,7 +66,7 @@ Measurement measure(lightsampler::Sampler& sampler, lightsampler::Frame& frame,
   double samples = 0, candidates = 0;
   for (; m.runs < settings.repeats && (m.runs == 0 || within_budget()); ++m.runs, ++request.seed) {
     const auto frame_start = Clock::now();
-    sampler.generate(request, frame);
+    generate();
     walls.push_back(seconds_since(frame_start) * 1e3);
     totals.push_back(frame.total_ms);
     passes.add(frame.passes);

@@ -4,6 +4,7 @@
 // outlier, not a signal.
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,9 @@ struct MeasureSettings {
   int repeats = 5;
   /// Seconds a case may use: frames stop once it is spent (at least one timed frame is taken).
   double budget_s = 20;
+  /// Replace the maps before every frame, as an animated texture would, so that every frame
+  /// counts; otherwise only the first frame of a sampler counts (the counts are kept).
+  bool recount = false;
 };
 
 struct Measurement {
@@ -38,10 +42,11 @@ struct Measurement {
 };
 
 /// Runs `request` on `sampler`, writing into `frame` (reused so that buffers keep their
-/// capacity). Frame k of the case gets seed first_seed + k.
+/// capacity). Frame k of the case gets seed first_seed + k. With settings.recount, `maps` are
+/// handed to update_map before every frame.
 Measurement measure(lightsampler::Sampler& sampler, lightsampler::Frame& frame,
                     lightsampler::FrameRequest request, std::uint64_t first_seed,
-                    const MeasureSettings& settings);
+                    const MeasureSettings& settings, std::span<const lightsampler::DensityMapView> maps);
 
 double median(std::vector<double> values);
 
