@@ -311,6 +311,19 @@ TEST_F(RenderCliTest, SceneWithoutEmitters) {
 }
 
 // 5. Bad command lines: status 2, nothing written.
+TEST_F(RenderCliTest, LightsAutoIsAQuarterOfTheQueriesAndTheDefault) {
+  // 20 x 10 pixels, max depth 3: 600 next-event queries per frame, 150 lights.
+  for (const bool given : {true, false}) {
+    std::vector<std::string> args = {kScene.string(), "--width", "20", "--height", "10", "--spp", "1",
+                                     "--max-depth", "3", "--threads", "2", "--quiet", "--out",
+                                     file("out.exr").string(), "--stats", file("out.json").string()};
+    if (given) args.insert(args.end(), {"--lights", "auto"});
+    const RunResult result = run(args);
+    ASSERT_EQ(result.status, 0) << result.err;
+    EXPECT_EQ(read_json(file("out.json"))["settings"]["lights"], 150.0) << "given: " << given;
+  }
+}
+
 TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
   const std::set<std::string> before = listing();
   std::vector<std::string> no_samples = tiny(kScene, {"--out", file("out.exr").string()});
@@ -320,7 +333,12 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
         tiny(kScene, {"--stats", file("out.json").string()}),
         tiny(kScene, {"--refine", "1.5", "--out", file("out.exr").string()}),
         tiny(kScene, {"--time", "0", "--out", file("out.exr").string()}),
-        tiny(kScene, {"--time", "-1", "--out", file("out.exr").string()})}) {
+        tiny(kScene, {"--time", "-1", "--out", file("out.exr").string()}),
+        [&] {
+          std::vector<std::string> bad_lights = tiny(kScene, {"--out", file("out.exr").string()});
+          bad_lights.insert(bad_lights.end(), {"--lights", "many"});
+          return bad_lights;
+        }()}) {
     const RunResult result = run(args);
     EXPECT_EQ(result.status, 2) << result.err;
     EXPECT_NE(result.err.find("trs-render: error: "), std::string::npos) << result.err;

@@ -29,7 +29,7 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
       "trs-render");
   RenderOptions options;
   tracer::RenderSettings& r = options.render;
-  std::string strategy = "trs", backend = "auto", out, stats, preview, variance, emitter_mask;
+  std::string strategy = "trs", backend = "auto", lights = "auto", out, stats, preview, variance, emitter_mask;
   double time = 0.0;
   bool quiet = false;
 
@@ -48,9 +48,10 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   app.add_option("--strategy", strategy, "light sampling for next-event estimation")
       ->check(CLI::IsMember(names(kStrategies)))
       ->capture_default_str();
-  app.add_option("--lights", r.strategy.lights,
-                 "trs: expected point lights drawn per frame (1e6 notation accepted)")
-      ->check(kFiniteNonNegative)
+  app.add_option("--lights", lights,
+                 "trs: expected point lights drawn per frame (1e6 notation accepted); auto: a "
+                 "quarter of the frame's next-event queries, width x height x max depth")
+      ->check(CLI::IsMember(std::vector<std::string>{"auto"}) | kFiniteNonNegative)
       ->capture_default_str();
   app.add_option("--seed", r.seed, "random seed of the paths and the light sets")
       ->capture_default_str();
@@ -105,6 +106,7 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
     if (!spp_on_command_line) r.spp = std::numeric_limits<unsigned>::max();
   }
   r.strategy.kind = kStrategies.at(strategy);
+  r.strategy.lights = lights == "auto" ? tracer::auto_lights(r.width, r.height, r.max_depth) : std::stod(lights);
   r.sampler.backend = kBackends.at(backend);
   r.strategy.seed = r.seed;
   options.out = out;

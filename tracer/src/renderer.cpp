@@ -5,6 +5,7 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -171,6 +172,11 @@ RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& pro
   result.invalid_paths = invalid.combine(std::plus<>());
   sums.finish(result.frames, result);
   return result;
+}
+
+double auto_lights(unsigned width, unsigned height, unsigned max_depth) {
+  const double queries = double(width) * double(height) * double(std::max(max_depth, 1u));
+  return std::max(1.0, std::round(kAutoLightsPerQuery * queries));
 }
 
 }  // namespace tracer
