@@ -4,7 +4,9 @@
 // cell enumeration (no map, no world area, UV-degenerate, or inside one lattice cell). With
 // automatic counting it also counts the triangles of at most p.small_cells cells, one invocation
 // each (the per-triangle path, at its best on small triangles). The others get their
-// bounding-box cell count, the footprint a later pass enumerates.
+// bounding-box cell count, the footprint a later pass enumerates. With p.stale_maps, only the
+// triangles of the maps marked there are counted; the others keep their results and get no
+// footprint, so that the later passes skip them too.
 #include "counting.glsl"
 #include "grid.glsl"
 
@@ -17,6 +19,10 @@ void main() {
   for (uint64_t i = thread_index(); i < uint64_t(p.triangle_count); i += thread_count()) {
     uint tri = uint(i);
     TexelTriangle t = triangles.v[tri];
+    if (p.stale_maps != 0ul && (t.map == kNoMap || Uints(p.stale_maps).v[t.map] == 0u)) {
+      uint64_at(p.footprint, i).v[0] = 0ul;
+      continue;
+    }
     float expected = 0.0, bound = 0.0;
     uint64_t cells = 0ul;
     if (t.map != kNoMap && t.area > 0.0) {

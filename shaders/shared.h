@@ -76,6 +76,7 @@ struct CountingPush {
   uint64_t footprint;    // uint64[T], lattice cells of each triangle's bounding box
   uint64_t cell_cdf;     // uint64[T], inclusive prefix sum of the footprints
   uint64_t totals;       // FrameTotals
+  uint64_t stale_maps;   // uint[maps]: non-zero for a map whose triangles to count; 0 (no buffer): all
   uint triangle_count;
   uint small_cells;      // setup pass: count triangles of at most this many cells itself (0: none)
 };

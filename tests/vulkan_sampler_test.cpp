@@ -483,9 +483,11 @@ TEST_F(VulkanSampler, UpdatedMapChangesTheNextFrame) {
 
 TEST_F(VulkanSampler, CountsAreKeptUntilAMapChanges) {
   // N-bar_T and D_T^max stay on the device between frames: a frame counts nothing until
-  // update_map (or another counting path), and then counts as a new sampler over the new maps.
-  const Mesh mesh = trs_test::random_triangles(300, 0.0f, 1.0f, 41);
-  std::vector<Map> maps = {trs_test::random_map(32, 32, 0.5, 42)};
+  // update_map (or another counting path), and then counts the triangles of the replaced map
+  // alone, as a new sampler over the new maps does.
+  Mesh mesh = trs_test::random_triangles(300, 0.0f, 1.0f, 41);
+  for (std::uint32_t t = 0; t < 300; ++t) mesh.triangle_maps.push_back(t % 7 == 0 ? kNoMap : t % 2);
+  std::vector<Map> maps = {trs_test::random_map(32, 32, 0.5, 42), trs_test::random_map(16, 16, 0.5, 44)};
   auto sampler = gpu(mesh, maps);
   const Frame first = generate(*sampler, {.seed = 1, .target_count = 1e5});
   EXPECT_EQ(first.counting_used, Counting::automatic);
@@ -497,13 +499,17 @@ TEST_F(VulkanSampler, CountsAreKeptUntilAMapChanges) {
   EXPECT_EQ(generate(*sampler, {.seed = 2, .target_count = 1e5, .vulkan = {.counting = Counting::per_triangle}})
                 .counting_used,
             Counting::per_triangle);
+  EXPECT_EQ(generate(*sampler, {.seed = 2, .target_count = 1e5}).counting_used, Counting::automatic);
 
-  maps[0] = trs_test::random_map(24, 24, 0.2, 43);
-  sampler->update_map(0, maps[0].view());
+  maps[1] = trs_test::random_map(24, 24, 0.2, 43);  // a new size too
+  sampler->update_map(1, maps[1].view());
   const Frame updated = generate(*sampler, {.seed = 3, .target_count = 1e5});
   EXPECT_EQ(updated.counting_used, Counting::automatic);
   const Frame fresh = generate(*gpu(mesh, maps), {.seed = 3, .target_count = 1e5});
   for (std::size_t t = 0; t < fresh.counts.size(); ++t) {
+    if (mesh.triangle_maps[t] == 0)  // not counted again: as it was
+      ASSERT_TRUE(updated.expected_counts[t] == first.expected_counts[t] &&
+                  updated.max_density[t] == first.max_density[t]) << t;
     ASSERT_NEAR(updated.expected_counts[t], fresh.expected_counts[t], 1e-5 * fresh.expected_counts[t]) << t;
     ASSERT_EQ(updated.max_density[t], fresh.max_density[t]) << t;
   }

@@ -47,9 +47,9 @@ std::map<std::pair<Backend, double>, double> run_floors(const ExperimentSettings
       floors[{v.backend, target}] = ms;
       CaseResult r;
       r.experiment = "floor";
-      r.mesh = r.map = "-";
+      const std::string none(1, '-');
+      r.mesh = r.map = r.scan = none;
       r.method = "write";
-      r.scan = "-";
       r.target = target;
       r.backend = lightsampler::to_string(v.backend);
       r.engine = v.backend == Backend::vulkan ? "vk" : "cpu";

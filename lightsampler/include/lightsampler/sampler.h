@@ -106,8 +106,8 @@ class Sampler {
 
   /// Replaces density map `index` (size, addressing and scale may change). Throws
   /// std::invalid_argument on a bad map, std::out_of_range on a bad index. N-bar_T and D_T^max
-  /// are kept between frames and counted again only after this: on the CPU backend the
-  /// triangles of this map alone, on the Vulkan backend every triangle.
+  /// are kept between frames; the next frame counts the triangles of this map again, and only
+  /// those (Vulkan raster counting, which adds into its results: every triangle).
   virtual void update_map(std::size_t index, const DensityMapView& map) = 0;
 
   /// Generates one frame into `frame`.

@@ -17,7 +17,7 @@ static_assert(sizeof(FrameTotals) == 56 && offsetof(FrameTotals, sample_count) =
 static_assert(sizeof(WritePush) == 16);
 static_assert(sizeof(PlanPush) == 56 && offsetof(PlanPush, target) == 24 && offsetof(PlanPush, max_workgroups) == 40 &&
               offsetof(PlanPush, key1) == 52);
-static_assert(sizeof(CountingPush) == 72 && offsetof(CountingPush, triangle_count) == 64);
+static_assert(sizeof(CountingPush) == 80 && offsetof(CountingPush, stale_maps) == 64 && offsetof(CountingPush, triangle_count) == 72);
 static_assert(sizeof(RasterPush) == 72 && offsetof(RasterPush, origin_x) == 48 && offsetof(RasterPush, map) == 64);
 static_assert(sizeof(RoundingPush) == 48 && offsetof(RoundingPush, target) == 24 && offsetof(RoundingPush, key0) == 32);
 static_assert(sizeof(ScanPush) == 56 && offsetof(ScanPush, sum_bits) == 48);

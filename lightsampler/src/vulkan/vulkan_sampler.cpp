@@ -54,6 +54,7 @@ struct FrameBuffers {
   Buffer expected, max_density, footprint, cell_cdf, counts, cdf, inverse, identity, totals, samples;
   Buffer totals_readback;  ///< host-visible copy of `totals`: shader atomics stay in device memory
   Buffer dispatch_args;    ///< realization's indirect workgroup counts, written by the plan pass
+  Buffer stale_maps;       ///< uint per map: 1 where a partial count counts the map's triangles
 };
 
 class VulkanSampler final : public Sampler {
@@ -75,6 +76,8 @@ class VulkanSampler final : public Sampler {
     buffers_.identity = context_->create_buffer(t * sizeof(std::uint32_t));
     if (!identity.empty())
       context_->upload(buffers_.identity, 0, identity.data(), identity.size() * sizeof(std::uint32_t));
+    buffers_.stale_maps = context_->create_buffer(std::max<std::size_t>(maps.size(), 1) * sizeof(std::uint32_t));
+    stale_.assign(maps.size(), false);
     buffers_.totals = context_->create_buffer(sizeof(gpu::FrameTotals));
     buffers_.totals_readback = context_->create_buffer(sizeof(gpu::FrameTotals), /*host_visible=*/true);
   }
@@ -86,7 +89,7 @@ class VulkanSampler final : public Sampler {
 
   void update_map(std::size_t index, const DensityMapView& map) override {
     scene_.update_map(index, map);
-    counted_.reset();
+    stale_[index] = true;
   }
 
   float density(std::uint32_t triangle, float b1, float b2) const override {
@@ -108,6 +111,7 @@ class VulkanSampler final : public Sampler {
   /// A frame's commands, starting from zero totals.
   Commands begin_frame_commands() {
     counting_.reset();
+    counting_stale_ = false;
     Commands c = context_->begin();
     c.fill(buffers_.totals, 0, sizeof(gpu::FrameTotals), 0);
     c.barrier();
@@ -119,6 +123,7 @@ class VulkanSampler final : public Sampler {
     c.copy(buffers_.totals, 0, buffers_.totals_readback, 0, sizeof(gpu::FrameTotals));
     add_passes(frame, context_->submit(c));
     if (counting_) counted_ = counting_;
+    if (counting_stale_) std::fill(stale_.begin(), stale_.end(), false);
     gpu::FrameTotals t;
     std::memcpy(&t, buffers_.totals_readback.mapped(), sizeof t);
     return t;
@@ -132,19 +137,31 @@ class VulkanSampler final : public Sampler {
   gpu::CountingPush count_push(std::uint32_t small_cells = 0) const {
     return {scene_.triangles(), scene_.map_records(), scene_.texels(), buffers_.expected.address(),
             buffers_.max_density.address(), buffers_.footprint.address(), buffers_.cell_cdf.address(),
-            buffers_.totals.address(), scene_.triangle_count(), small_cells};
+            buffers_.totals.address(), 0, scene_.triangle_count(), small_cells};
   }
 
   /// Counting (Algorithm 2, lines 1-8) and the total N-bar, recorded into `c`. N-bar_T and
-  /// D_T^max stay in their buffers between frames: a frame counts only after update_map, or when
-  /// it asks for another counting path; otherwise it only sums the total.
+  /// D_T^max stay in their buffers between frames: a frame counts the triangles of the maps
+  /// replaced by update_map since, or every triangle when it asks for another counting path
+  /// (or raster, which adds into its results); otherwise it only sums the total.
   void record_counting(Commands& c, const FrameRequest& request, Frame& frame) {
     const Counting path = request.vulkan.counting;
     if (path == Counting::cpu)
       throw std::invalid_argument("the Vulkan backend has no CPU counting path; ask for raster, compute or per-triangle");
-    const gpu::CountingPush push = count_push(path == Counting::automatic ? scene_.small_triangle_cells() : 0);
+    gpu::CountingPush push = count_push(path == Counting::automatic ? scene_.small_triangle_cells() : 0);
     const std::uint32_t groups = workgroups_for(scene_.triangle_count());
-    if (counted_ != path) record_triangle_counts(c, path, push, frame);
+    const bool stale = std::find(stale_.begin(), stale_.end(), true) != stale_.end();
+    if (counted_ == path && stale && path != Counting::raster) {
+      c.fill(buffers_.stale_maps, 0, buffers_.stale_maps.size(), 0);
+      for (std::size_t m = 0; m < stale_.size(); ++m)
+        if (stale_[m]) c.fill(buffers_.stale_maps, m * sizeof(std::uint32_t), sizeof(std::uint32_t), 1);
+      c.barrier();
+      push.stale_maps = buffers_.stale_maps.address();
+    }
+    if (counted_ != path || stale) {
+      record_triangle_counts(c, path, push, frame);
+      counting_stale_ = true;
+    }
     c.dispatch(pipelines_.counting_total, &push, sizeof push, groups);
     c.barrier();
     c.timestamp(to_string(Pass::counting));
@@ -397,6 +414,8 @@ class VulkanSampler final : public Sampler {
   std::uint64_t last_count_ = 0;  ///< N of the last frame without a target: the next one's bound
   std::optional<Counting> counted_;   ///< the path whose counts the buffers hold; none: to count
   std::optional<Counting> counting_;  ///< the path the commands being recorded count by
+  std::vector<bool> stale_;           ///< per map: replaced since the last count
+  bool counting_stale_ = false;       ///< the commands being recorded count the stale maps
 };
 
 }  // namespace
