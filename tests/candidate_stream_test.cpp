@@ -12,6 +12,7 @@
 #include "cpu/candidates.h"
 #include "cpu/passes.h"
 #include "lightsampler/triangle_map.h"
+#include "same_frame.h"
 #include "sampler_fixtures.h"
 
 using namespace lightsampler;
@@ -63,15 +64,6 @@ std::vector<core::TexelTriangle> texel_triangles(const std::vector<core::Triangl
   std::vector<core::TexelTriangle> out;
   for (const core::TriangleRecord& r : records) out.push_back(core::make_texel_triangle(r, {&map, 1}));
   return out;
-}
-
-void expect_same_samples(std::span<const Sample> got, std::span<const Sample> want) {
-  ASSERT_EQ(got.size(), want.size());
-  for (std::size_t i = 0; i < want.size(); ++i) {
-    ASSERT_EQ(got[i].triangle, want[i].triangle) << "sample " << i;
-    ASSERT_EQ(got[i].b1, want[i].b1) << "sample " << i;
-    ASSERT_EQ(got[i].b2, want[i].b2) << "sample " << i;
-  }
 }
 
 }  // namespace
@@ -170,7 +162,7 @@ TEST(CandidateStream, RealizationIsTheStreamWalkedOneCandidateAtATime) {
                                                   frame.inverse_permutation.span(), key, max_tries, got);
     const cpu::RealizationResult b = reference_realize(tris, map, frame.max_density.span(), frame.cdf.span(),
                                                        frame.inverse_permutation.span(), key, max_tries, want);
-    expect_same_samples(got.span(), want);
+    trs_test::expect_same_samples(got.span(), want);
     EXPECT_EQ(a.candidates, b.candidates);
     EXPECT_EQ(a.exhausted, b.exhausted);
     if (max_tries < 20) EXPECT_GT(a.exhausted, 0u) << "the rule on tries is exercised";
@@ -206,7 +198,7 @@ TEST(CandidateStream, RejectionSamplingIsTheStreamOverTheOutput) {
     candidates += fill.tries();
     exhausted += fill.exhausted();
   }
-  expect_same_samples(got.span(), want);
+  trs_test::expect_same_samples(got.span(), want);
   EXPECT_EQ(a.candidates, candidates);
   EXPECT_EQ(a.exhausted, exhausted);
   EXPECT_GT(exhausted, 0u);

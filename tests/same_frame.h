@@ -1,5 +1,7 @@
 #pragma once
-// Two frames compared output by output, bit for bit.
+// Samples and frames compared output by output, bit for bit.
+
+#include <span>
 
 #include <gtest/gtest.h>
 
@@ -13,6 +15,16 @@ void expect_same_values(const lightsampler::Buffer<T>& got, const lightsampler::
   for (std::size_t i = 0; i < want.size(); ++i) ASSERT_EQ(got[i], want[i]) << what << " " << i;
 }
 
+/// The same samples, in the same order, bit for bit.
+inline void expect_same_samples(std::span<const lightsampler::Sample> got, std::span<const lightsampler::Sample> want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    ASSERT_EQ(got[i].triangle, want[i].triangle) << "sample " << i;
+    ASSERT_EQ(got[i].b1, want[i].b1) << "sample " << i;
+    ASSERT_EQ(got[i].b2, want[i].b2) << "sample " << i;
+  }
+}
+
 /// The counts, the CDF and the samples of `got` are those of `want`.
 inline void expect_same_frames(const lightsampler::Frame& got, const lightsampler::Frame& want) {
   EXPECT_EQ(got.expected_total, want.expected_total);
@@ -20,11 +32,7 @@ inline void expect_same_frames(const lightsampler::Frame& got, const lightsample
   expect_same_values(got.max_density, want.max_density, "D_T^max of triangle");
   expect_same_values(got.counts, want.counts, "N_T of triangle");
   expect_same_values(got.cdf, want.cdf, "CDF entry");
-  ASSERT_EQ(got.samples.size(), want.samples.size());
-  for (std::size_t i = 0; i < want.samples.size(); ++i) {
-    const lightsampler::Sample &a = got.samples[i], &b = want.samples[i];
-    ASSERT_TRUE(a.triangle == b.triangle && a.b1 == b.b1 && a.b2 == b.b2) << "sample " << i;
-  }
+  expect_same_samples(got.samples.span(), want.samples.span());
 }
 
 }  // namespace trs_test

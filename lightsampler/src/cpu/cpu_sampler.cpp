@@ -89,14 +89,14 @@ class CpuSampler final : public Sampler {
   /// maps replaced since the last count, and copies the rest.
   void counting_pass(Frame& frame, Stopwatch& pass) {
     const bool recount = !counted_ || std::find(stale_.begin(), stale_.end(), 1) != stale_.end();
-    if (!counted_)
-      expected_total_ = core::count(scene_.triangles(), scene_.texel_triangles(), scene_.maps(), expected_counts_,
-                                    max_density_);
-    else if (recount)
-      expected_total_ = core::recount(scene_.triangles(), scene_.texel_triangles(), scene_.maps(), stale_,
-                                      expected_counts_, max_density_);
-    counted_ = true;
-    std::fill(stale_.begin(), stale_.end(), 0);
+    if (recount) {
+      expected_total_ = counted_ ? core::recount(scene_.triangles(), scene_.texel_triangles(), scene_.maps(), stale_,
+                                                 expected_counts_, max_density_)
+                                 : core::count(scene_.triangles(), scene_.texel_triangles(), scene_.maps(),
+                                               expected_counts_, max_density_);
+      counted_ = true;
+      std::fill(stale_.begin(), stale_.end(), 0);
+    }
     core::validate_expected_total(expected_total_);
     copy(expected_counts_, frame.expected_counts);
     copy(max_density_, frame.max_density);

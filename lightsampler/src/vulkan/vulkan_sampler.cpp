@@ -111,7 +111,6 @@ class VulkanSampler final : public Sampler {
   /// A frame's commands, starting from zero totals.
   Commands begin_frame_commands() {
     counting_.reset();
-    counting_stale_ = false;
     Commands c = context_->begin();
     c.fill(buffers_.totals, 0, sizeof(gpu::FrameTotals), 0);
     c.barrier();
@@ -122,8 +121,10 @@ class VulkanSampler final : public Sampler {
   gpu::FrameTotals submit(Commands& c, Frame& frame) {
     c.copy(buffers_.totals, 0, buffers_.totals_readback, 0, sizeof(gpu::FrameTotals));
     add_passes(frame, context_->submit(c));
-    if (counting_) counted_ = counting_;
-    if (counting_stale_) std::fill(stale_.begin(), stale_.end(), false);
+    if (counting_) {
+      counted_ = counting_;
+      std::fill(stale_.begin(), stale_.end(), false);
+    }
     gpu::FrameTotals t;
     std::memcpy(&t, buffers_.totals_readback.mapped(), sizeof t);
     return t;
@@ -158,16 +159,14 @@ class VulkanSampler final : public Sampler {
       c.barrier();
       push.stale_maps = buffers_.stale_maps.address();
     }
-    if (counted_ != path || stale) {
-      record_triangle_counts(c, path, push, frame);
-      counting_stale_ = true;
-    }
+    if (counted_ != path || stale) record_triangle_counts(c, path, push, frame);
     c.dispatch(pipelines_.counting_total, &push, sizeof push, groups);
     c.barrier();
     c.timestamp(to_string(Pass::counting));
   }
 
-  /// N-bar_T and D_T^max of every triangle by `path`; counted_ once the commands have run.
+  /// N-bar_T and D_T^max by `path`, of every triangle or, with push.stale_maps, of the stale
+  /// maps' triangles; counted_ once the commands have run.
   void record_triangle_counts(Commands& c, Counting path, const gpu::CountingPush& push, Frame& frame) {
     const std::uint32_t groups = workgroups_for(scene_.triangle_count());
     c.dispatch(pipelines_.counting_setup, &push, sizeof push, groups);
@@ -415,7 +414,6 @@ class VulkanSampler final : public Sampler {
   std::optional<Counting> counted_;   ///< the path whose counts the buffers hold; none: to count
   std::optional<Counting> counting_;  ///< the path the commands being recorded count by
   std::vector<bool> stale_;           ///< per map: replaced since the last count
-  bool counting_stale_ = false;       ///< the commands being recorded count the stale maps
 };
 
 }  // namespace
