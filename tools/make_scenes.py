@@ -165,14 +165,17 @@ def box(center, size, yaw=0.0):
     return mesh
 
 
-def sphere(center, radius, cols=12, rows=8):
-    """A low-poly UV sphere, smooth-shaded."""
-    def direction(s, t):
-        theta, phi = math.pi * t, 2 * math.pi * s
-        return (math.sin(theta) * math.sin(phi), math.cos(theta), math.sin(theta) * math.cos(phi))
+def sphere_direction(s, t):
+    """The unit direction of UV (s, t) on sphere(): s around +y from +z, t from the north pole."""
+    theta, phi = math.pi * t, 2 * math.pi * s
+    return (math.sin(theta) * math.sin(phi), math.cos(theta), math.sin(theta) * math.cos(phi))
 
+
+def sphere(center, radius, cols=12, rows=8):
+    """A UV sphere, smooth-shaded, low-poly by default; UV (s, t) as sphere_direction()."""
     mesh = Mesh()
-    mesh.add_grid(lambda s, t: add(center, mul(direction(s, t), radius)), direction, cols, rows)
+    mesh.add_grid(lambda s, t: add(center, mul(sphere_direction(s, t), radius)), sphere_direction,
+                  cols, rows)
     return mesh
 
 
@@ -348,7 +351,7 @@ def read_accessor(doc, blob, index):
 def check(doc, blob):
     """Asserts the document is consistent with its buffer: views and accessors lie within it,
     attribute counts agree, POSITION bounds match the bytes, indices are in range, every triangle
-    is wound counter-clockwise around its normals, and the camera sees emitters' front faces."""
+    is wound counter-clockwise around its normals, and the camera sees each emitter's front faces."""
     assert len(blob) == doc["buffers"][0]["byteLength"] and len(blob) % 4 == 0
     for view in doc["bufferViews"]:
         assert view["byteOffset"] % 4 == 0
@@ -366,14 +369,16 @@ def check(doc, blob):
             assert [f32(x) for x in bounds["max"]] == [max(v[k] for v in p) for k in range(3)]
             assert all(0 <= i < len(p) for i in indices)
             emitter = "emissiveTexture" in doc["materials"][primitive["material"]]
+            facing_camera = 0
             for t in range(0, len(indices), 3):
                 a, b, c = indices[t:t + 3]
                 face = cross(sub(p[b], p[a]), sub(p[c], p[a]))
                 assert dot(face, add(add(n[a], n[b]), n[c])) > 0, (mesh["name"], t // 3)
-                assert not emitter or dot(face, sub(eye, p[a])) > 0, (mesh["name"], t // 3)
+                facing_camera += dot(face, sub(eye, p[a])) > 0
+            assert not emitter or facing_camera > 0, mesh["name"]
 
 
-def write_settings(folder, title, spp, max_depth=4, lights=1000000):
+def write_settings(folder, title, spp, max_depth=4, lights='"auto"'):
     """render.toml: `key = value` lines that trs-render's CLI11 config parser reads."""
     lines = [f"# {title}: settings for trs-render (command-line flags override these)",
              f"width = {WIDTH}", f"height = {HEIGHT}", f"spp = {spp}",
@@ -625,8 +630,55 @@ def tile_emitter():
     return gltf, "Tile emitter", 16
 
 
+# --- scene 5: lantern ---------------------------------------------------------------------------
+
+def lantern_pixels(width, height, dots=90, radius=0.05, seed=5):
+    """Round dots, scattered evenly over the sphere (a jittered Fibonacci lattice), on black: a
+    bright core with a soft rim, each dot warm, cool or amber white and some dimmer. Returns
+    pixel(x, y) over a map rasterised dot by dot (each touches only the texels near it)."""
+    rng = random.Random(seed)
+    texels = [[(0.0, 0.0, 0.0)] * width for _ in range(height)]
+    golden = math.pi * (3 - math.sqrt(5))
+    for k in range(dots):
+        y = 1 - 2 * (k + 0.5 + rng.uniform(-0.3, 0.3)) / dots
+        phi = golden * k + rng.uniform(-0.2, 0.2)
+        r = math.sqrt(max(1 - y * y, 0.0))
+        centre = (r * math.sin(phi), y, r * math.cos(phi))
+        colour = mul(rng.choice([(1.0, 0.85, 0.6), (0.75, 0.85, 1.0), (1.0, 0.6, 0.25)]),
+                     rng.choice([1.0, 1.0, 0.5, 0.25]))
+        theta = math.acos(max(-1.0, min(1.0, centre[1])))
+        t0 = max(int((theta - radius) / math.pi * height) - 1, 0)
+        t1 = min(int((theta + radius) / math.pi * height) + 2, height)
+        for j in range(t0, t1):
+            for i in range(width):
+                d = sphere_direction((i + 0.5) / width, (j + 0.5) / height)
+                angle = math.acos(max(-1.0, min(1.0, dot(d, centre))))
+                if angle < radius:
+                    weight = 1.0 - smoothstep(0.6 * radius, radius, angle)
+                    texels[j][i] = add(texels[j][i], mul(colour, weight))
+    return lambda x, y: tuple(min(c, 1.0) for c in texels[y][x])
+
+
+def lantern():
+    """A ball lantern pierced with sparse bright dots, hanging in the middle of a room: its
+    lights face every way, so from any point of the room about half of them face away."""
+    gltf = Gltf("lantern")
+    gltf.mesh("room", room(-3.0, 3.0, 3.0, -3.0, 4.5), gltf.material("plaster", (0.65,) * 3))
+    gltf.mesh("table", box((-0.9, 0.375, -1.2), (1.2, 0.75, 0.8), 0.3),
+              gltf.material("wood", (0.55, 0.35, 0.2)))
+    gltf.mesh("ball", sphere((1.3, 0.4, 0.2), 0.4),
+              gltf.material("white plastic", (0.8, 0.8, 0.8), 0.0, 0.3))
+    gltf.mesh("post", cylinder((1.2, 0.0, -1.7), 0.2, 1.4),
+              gltf.material("brushed steel", (0.8, 0.8, 0.82), 1.0, 0.4))
+    texture = Texture("lantern.png", 512, 256, lantern_pixels(512, 256))
+    ball = sphere((0.0, 1.9, -0.6), 0.4, cols=48, rows=24)
+    gltf.mesh("lantern", ball, gltf.emissive_material("lantern", texture, 250.0))
+    gltf.camera((2.3, 1.5, 4.1), (-0.3, 1.3, -1.0), 0.9)
+    return gltf, "Lantern", 16
+
+
 SCENES = {"neon-sign": neon_sign, "gradient-screen": gradient_screen, "mosaic": mosaic,
-          "tile-emitter": tile_emitter}
+          "tile-emitter": tile_emitter, "lantern": lantern}
 
 
 def main():

@@ -11,7 +11,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <memory>
+#include <vector>
+#include <string_view>
 
 #include "estimate.h"
 #include "scene_builder.h"
@@ -93,19 +96,38 @@ struct QuadOverPlane {
     return sum;
   }
 
-  Estimate run(LightStrategy& strategy, std::uint64_t seed = 1) const {
+  Estimate run(LightStrategy& strategy, std::uint64_t seed = 1, unsigned candidates = 1) const {
     return trs_test::estimate_radiance(scene, *geometry, *emitters, strategy, ray(), 1, kFrames,
-                                       kPaths, seed);
+                                       kPaths, seed, candidates);
   }
 };
 
+StrategyOptions options(StrategyKind kind, double lights = 2000) {
+  StrategyOptions o;
+  o.kind = kind;
+  o.lights = lights;
+  o.seed = 7;
+  return o;
+}
+
 std::unique_ptr<LightStrategy> strategy(const Emitters& emitters, StrategyKind kind,
                                         double lights = 2000) {
-  StrategyOptions options;
-  options.kind = kind;
-  options.lights = lights;
-  options.seed = 7;
-  return make_light_strategy(emitters, options);
+  return make_light_strategy(emitters, options(kind, lights));
+}
+
+const std::vector<StrategyKind> kEveryStrategy = {StrategyKind::uniform, StrategyKind::power,
+                                                  StrategyKind::trs, StrategyKind::ris};
+
+/// Whether every strategy's estimate along the bench's ray agrees with the quadrature.
+void expect_every_strategy_agrees(const QuadOverPlane& bench, const glm::dvec3& expected,
+                                  const std::vector<StrategyKind>& kinds) {
+  for (StrategyKind kind : kinds) {
+    const StrategyOptions o = options(kind);
+    auto s = make_light_strategy(*bench.emitters, o);
+    const Estimate e = bench.run(*s, 1, connection_candidates(o));
+    EXPECT_TRUE(trs_test::agrees(e, expected, kSigmas, kQuadratureSlack))
+        << to_string(kind) << "\n" << trs_test::describe(e, expected);
+  }
 }
 
 class AnalyticQuad : public ::testing::Test {
@@ -123,17 +145,28 @@ glm::dvec3 AnalyticQuad::expected_;
 
 TEST_F(AnalyticQuad, EveryStrategyConvergesToTheQuadrature) {
   ASSERT_GT(expected_.g, 0.0);
-  for (StrategyKind kind : {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs}) {
-    auto s = strategy(*bench_->emitters, kind);
-    const Estimate e = bench_->run(*s);
-    EXPECT_TRUE(trs_test::agrees(e, expected_, kSigmas, kQuadratureSlack))
-        << to_string(kind) << "\n" << trs_test::describe(e, expected_);
+  expect_every_strategy_agrees(*bench_, expected_, kEveryStrategy);
+}
+
+// The lights of the Vulkan sampler, read back and resampled on the host like the CPU sampler's.
+// Skipped without a Vulkan device, unless LIGHTSAMPLER_REQUIRE_VULKAN=1.
+TEST(VulkanLights, TrsAndRisConvergeToTheQuadrature) {
+  std::unique_ptr<QuadOverPlane> bench;
+  try {
+    bench = std::make_unique<QuadOverPlane>(
+        lightsampler::SamplerOptions{.backend = lightsampler::Backend::vulkan});
+  } catch (const lightsampler::VulkanUnavailable& e) {
+    const char* required = std::getenv("LIGHTSAMPLER_REQUIRE_VULKAN");
+    if (required && std::string_view(required) == "1") FAIL() << "Vulkan is unavailable: " << e.what();
+    GTEST_SKIP() << "Vulkan unavailable: " << e.what();
   }
+  expect_every_strategy_agrees(*bench, bench->expected(), {StrategyKind::trs, StrategyKind::ris});
 }
 
 // The lights drawn from parts of the emitter's triangles (lightsampler/refinement.h), brought
-// back to the triangles: the same estimate; `power` reads the per-triangle integrals through it.
-TEST(RefinedLightSampler, TrsAndPowerConvergeToTheQuadrature) {
+// back to the triangles: the same estimate; `power` reads the per-triangle integrals through it,
+// `ris` resamples the lights.
+TEST(RefinedLightSampler, PowerTrsAndRisConvergeToTheQuadrature) {
   lightsampler::SamplerOptions sampler = trs_test::kCpuSampler;
   sampler.refinement = {.min_acceptance = 0.9f, .min_texels = 1.0f, .min_split_gain = 1.0f};  // split even where it barely pays
   const QuadOverPlane bench(sampler);
@@ -142,13 +175,8 @@ TEST(RefinedLightSampler, TrsAndPowerConvergeToTheQuadrature) {
   ASSERT_TRUE(std::any_of(frame.passes.begin(), frame.passes.end(),
                           [](const lightsampler::PassTime& p) { return p.pass == lightsampler::Pass::refinement; }))
       << "the emitter was not split";
-  const glm::dvec3 expected = bench.expected();
-  for (StrategyKind kind : {StrategyKind::power, StrategyKind::trs}) {
-    auto s = strategy(*bench.emitters, kind);
-    const Estimate e = bench.run(*s);
-    EXPECT_TRUE(trs_test::agrees(e, expected, kSigmas, kQuadratureSlack))
-        << to_string(kind) << "\n" << trs_test::describe(e, expected);
-  }
+  expect_every_strategy_agrees(bench, bench.expected(),
+                               {StrategyKind::power, StrategyKind::trs, StrategyKind::ris});
 }
 
 // One light per frame, in expectation: frames with none are common (each triangle's count is
@@ -212,9 +240,14 @@ class TrsWithoutSetSize : public LightStrategy {
 
 TEST_F(AnalyticQuad, TheCheckRejectsWrongStrategies) {
   PowerDrawnUniformWeighed mismatched(*bench_->emitters);
-  EXPECT_FALSE(trs_test::agrees(bench_->run(mismatched), expected_, kSigmas, kQuadratureSlack));
   TrsWithoutSetSize unscaled(*bench_->emitters);
-  EXPECT_FALSE(trs_test::agrees(bench_->run(unscaled), expected_, kSigmas, kQuadratureSlack));
+  // Used as they are, and resampled: resampling does not hide a wrong source density.
+  for (unsigned candidates : {1u, kDefaultCandidates}) {
+    EXPECT_FALSE(trs_test::agrees(bench_->run(mismatched, 1, candidates), expected_, kSigmas,
+                                  kQuadratureSlack)) << candidates;
+    EXPECT_FALSE(trs_test::agrees(bench_->run(unscaled, 1, candidates), expected_, kSigmas,
+                                  kQuadratureSlack)) << candidates;
+  }
 }
 
 }  // namespace

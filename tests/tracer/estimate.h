@@ -20,14 +20,15 @@ struct Estimate {
   glm::dvec3 standard_error{0.0};
 };
 
-/// `frames` frames of `paths` paths along `ray`. Paths of one frame share its light set, so the
-/// error comes from the spread of the frame means, which are independent.
+/// `frames` frames of `paths` paths along `ray`, each connection resampled from `candidates`
+/// light samples. Paths of one frame share its light set, so the error comes from the spread
+/// of the frame means, which are independent.
 inline Estimate estimate_radiance(const tracer::Scene& scene, const tracer::Geometry& geometry,
                                   const tracer::Emitters& emitters,
                                   tracer::LightStrategy& strategy, const tracer::Ray& ray,
                                   unsigned max_depth, unsigned frames, unsigned paths,
-                                  std::uint64_t seed) {
-  const tracer::PathTracer tracer(scene, geometry, emitters, strategy, max_depth);
+                                  std::uint64_t seed, unsigned candidates = 1) {
+  const tracer::PathTracer tracer(scene, geometry, emitters, strategy, max_depth, candidates);
   const lightsampler::PhiloxKey key = tracer::path_key(seed);
   glm::dvec3 sum(0.0), sum_squares(0.0);
   std::uint64_t rays = 0;

@@ -66,14 +66,16 @@ TEST(Furnace, OneBounceReturnsEmissionPlusAlbedo) {
   const Ray ray{eye, glm::normalize(target - eye)};
   const Bsdf bsdf({glm::vec3(1.0f), 0.0f, kRoughness}, {0, 0, 1});
   const double expected = 1.0 + albedo(bsdf, {0, 0, 1}, -ray.direction);
-  for (StrategyKind kind : {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs}) {
+  for (StrategyKind kind :
+       {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris}) {
     StrategyOptions options;
     options.kind = kind;
     options.lights = 5000;
     auto strategy = make_light_strategy(emitters, options);
     for (unsigned depth : {0u, 1u}) {
-      const trs_test::Estimate e = trs_test::estimate_radiance(scene, geometry, emitters, *strategy,
-                                                               ray, depth, 400, 500, 1);
+      const trs_test::Estimate e = trs_test::estimate_radiance(
+          scene, geometry, emitters, *strategy, ray, depth, 400, 500, 1,
+          connection_candidates(options));
       const glm::dvec3 want(depth == 0 ? 1.0 : expected);
       EXPECT_TRUE(trs_test::agrees(e, want, 4.0, 1e-3))
           << to_string(kind) << " depth " << depth << "\n" << trs_test::describe(e, want);

@@ -1,7 +1,8 @@
 // MIS: at a shading point, a light sample's weight and the weight the same path gets when BSDF
 // sampling finds it sum to one, for every strategy. That holds only if the density a light
 // sample reports (mis_pdf) is the density pdf() gives at a BSDF hit on the same point, and if
-// pdf() is a normalised area density over the lights.
+// pdf() is a normalised area density over the lights. `ris` weighs the light it keeps with that
+// same mis_pdf (PathTracer::light_sample), whichever candidate it keeps.
 
 #include <gtest/gtest.h>
 
@@ -46,7 +47,8 @@ TEST(Mis, LightAndBsdfWeightsSumToOne) {
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const glm::vec3 x(0.2f, 0.1f, 0.0f), n(0, 0, 1), wo = glm::normalize(glm::vec3(0.3f, -0.2f, 1));
   const Bsdf bsdf({glm::vec3(0.7f), 0.3f, 0.4f}, n);
-  for (StrategyKind kind : {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs}) {
+  for (StrategyKind kind :
+       {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris}) {
     auto strategy = make(emitters, kind);
     strategy->begin_frame(0);
     int checked = 0;
@@ -57,7 +59,12 @@ TEST(Mis, LightAndBsdfWeightsSumToOne) {
       const glm::vec3 d = s->position - x;
       const float r = glm::length(d);
       const glm::vec3 wi = d / r;
-      const float cos_light = glm::dot(-wi, emitters.normal(s->light));
+      // The record holds what the emitters give at its point, bit for bit.
+      ASSERT_EQ(s->position, emitters.position(s->light, s->b1, s->b2)) << to_string(kind);
+      ASSERT_EQ(s->normal, emitters.normal(s->light)) << to_string(kind);
+      ASSERT_EQ(s->radiance_towards(-wi), emitters.radiance(s->light, s->b1, s->b2, -wi));
+      ASSERT_EQ(s->radiance_towards(wi), emitters.radiance(s->light, s->b1, s->b2, wi));
+      const float cos_light = glm::dot(-wi, s->normal);
       const float bsdf_pdf = bsdf.pdf(wo, wi);
       if (bsdf_pdf <= 0.0f || cos_light <= 0.0f) continue;  // only one technique reaches it
       // The light sample's weight, and the weight emitted() gives a BSDF hit there.

@@ -30,7 +30,7 @@ using trs_test::RunResult;
 using trs_test::write_file;
 
 const fs::path kScene = fs::path(TRS_SCENES_DIR) / "neon-sign" / "neon-sign.gltf";
-const std::vector<std::string> kStrategies = {"uniform", "power", "trs"};
+const std::vector<std::string> kStrategies = {"uniform", "power", "trs", "ris"};
 
 nlohmann::json read_json(const fs::path& file) { return nlohmann::json::parse(read_file(file)); }
 
@@ -150,10 +150,16 @@ TEST_F(RenderCliTest, RendersEveryStrategy) {
     const double relative_variance = stats["relative_variance"].get<double>();
     EXPECT_TRUE(std::isfinite(relative_variance) && relative_variance >= 0.0) << relative_variance;
     const double sampler_ms = stats["sampler_ms_per_frame"].get<double>();
-    if (strategy == "trs")
+    const bool point_lights = strategy == "trs" || strategy == "ris";
+    if (point_lights)
       EXPECT_GT(sampler_ms, 0.0);
     else
       EXPECT_GE(sampler_ms, 0.0);
+    EXPECT_EQ(stats["light_records_ms_per_frame"].get<double>() > 0.0, point_lights);
+    if (strategy == "ris")
+      EXPECT_EQ(settings["candidates"], 8);
+    else
+      EXPECT_TRUE(settings["candidates"].is_null());
   }
 }
 
@@ -334,6 +340,8 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
         tiny(kScene, {"--refine", "1.5", "--out", file("out.exr").string()}),
         tiny(kScene, {"--time", "0", "--out", file("out.exr").string()}),
         tiny(kScene, {"--time", "-1", "--out", file("out.exr").string()}),
+        tiny(kScene, {"--candidates", "4", "--out", file("out.exr").string()}),  // trs
+        tiny(kScene, {"--strategy", "ris", "--candidates", "0", "--out", file("out.exr").string()}),
         [&] {
           std::vector<std::string> bad_lights = tiny(kScene, {"--out", file("out.exr").string()});
           bad_lights.insert(bad_lights.end(), {"--lights", "many"});

@@ -17,7 +17,8 @@ namespace {
 const std::map<std::string, tracer::StrategyKind> kStrategies = {
     {"uniform", tracer::StrategyKind::uniform},
     {"power", tracer::StrategyKind::power},
-    {"trs", tracer::StrategyKind::trs}};
+    {"trs", tracer::StrategyKind::trs},
+    {"ris", tracer::StrategyKind::ris}};
 
 }  // namespace
 
@@ -25,7 +26,8 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   CLI::App app(
       "Renders a glTF 2.0 scene lit by its emissive textures with a path tracer whose next-event "
       "estimation samples lights uniformly by area, by triangle power, or from millions of point "
-      "lights drawn every frame by Triangle Rejection Sampling.",
+      "lights drawn every frame by Triangle Rejection Sampling, used as they are (trs) or "
+      "resampled per shading point by their unshadowed contribution (ris).",
       "trs-render");
   RenderOptions options;
   tracer::RenderSettings& r = options.render;
@@ -49,9 +51,14 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
       ->check(CLI::IsMember(names(kStrategies)))
       ->capture_default_str();
   app.add_option("--lights", lights,
-                 "trs: expected point lights drawn per frame (1e6 notation accepted); auto: a "
-                 "quarter of the frame's next-event queries, width x height x max depth")
+                 "trs, ris: expected point lights drawn per frame (1e6 notation accepted; 64 bytes "
+                 "each); auto: a quarter of the frame's next-event queries, width x height x max "
+                 "depth")
       ->check(CLI::IsMember(std::vector<std::string>{"auto"}) | kFiniteNonNegative)
+      ->capture_default_str();
+  app.add_option("--candidates", r.strategy.candidates,
+                 "ris: point lights resampled into each next-event connection")
+      ->check(CLI::Range(1u, 1024u))
       ->capture_default_str();
   app.add_option("--seed", r.seed, "random seed of the paths and the light sets")
       ->capture_default_str();
@@ -106,6 +113,10 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
     if (!spp_on_command_line) r.spp = std::numeric_limits<unsigned>::max();
   }
   r.strategy.kind = kStrategies.at(strategy);
+  if (app.count("--candidates") > 0 && r.strategy.kind != tracer::StrategyKind::ris) {
+    std::cerr << "trs-render: error: --candidates belongs to --strategy ris\n";
+    return kUsageError;
+  }
   r.strategy.lights = lights == "auto" ? tracer::auto_lights(r.width, r.height, r.max_depth) : std::stod(lights);
   r.sampler.backend = kBackends.at(backend);
   r.strategy.seed = r.seed;

@@ -22,6 +22,7 @@ struct SamplerTimes {
   double median_ms = 0.0;
   double mean_lights = 0.0;
   double acceptance = 0.0;  ///< lights per candidate the rejection loops tried
+  double records_ms = 0.0;  ///< mean time writing the light records
   std::uint64_t exhausted = 0;
   std::vector<lightsampler::PassTime> passes;  ///< mean per pass, in the sampler's order
 };
@@ -45,11 +46,13 @@ SamplerTimes sampler_times(const tracer::RenderResult& result) {
     candidates += double(f.candidates);
     ms.push_back(f.sampler_ms);
     t.mean_ms += f.sampler_ms;
+    t.records_ms += f.records_ms;
     t.exhausted += f.exhausted;
     for (const lightsampler::PassTime& p : f.passes) add_pass(t.passes, p);
   }
   for (lightsampler::PassTime& p : t.passes) p.ms /= double(frames.size());
   t.mean_ms /= double(frames.size());
+  t.records_ms /= double(frames.size());
   t.acceptance = candidates > 0.0 ? lights / candidates : 0.0;
   t.mean_lights = lights / double(frames.size());
   std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
@@ -115,6 +118,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"time", options.time_seconds ? nlohmann::json(*options.time_seconds) : nlohmann::json()},
         {"strategy", result.strategy},
         {"lights", r.strategy.lights},
+        {"candidates", r.strategy.kind == tracer::StrategyKind::ris ? nlohmann::json(r.strategy.candidates) : nlohmann::json()},
         {"seed", r.seed},
         {"max_depth", r.max_depth},
         {"threads", r.threads},
@@ -134,6 +138,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
       {"sampler_ms_median", sampler.median_ms},
       {"sampler_ms", ms},
       {"sampler_passes_ms", passes},
+      {"light_records_ms_per_frame", sampler.records_ms},
       {"lights_per_frame", sampler.mean_lights},
       {"acceptance_rate", sampler.acceptance},
       {"exhausted_lights", sampler.exhausted},
@@ -172,6 +177,8 @@ void print_summary(std::ostream& out, const RenderOptions& options,
       std::snprintf(line, sizeof line, "; %.3g of the candidates accepted\n", sampler.acceptance);
       out << line;
     }
+    std::snprintf(line, sizeof line, "    light records: %.2f ms per frame\n", sampler.records_ms);
+    out << line;
   }
   std::snprintf(line, sizeof line,
                 "  relative variance per sample: %.4g (a self-estimate: it underestimates heavy tails; "

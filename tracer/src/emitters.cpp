@@ -100,8 +100,12 @@ lightsampler::MeshView Emitters::mesh() const {
 }
 
 glm::vec3 Emitters::radiance(std::uint32_t light, float b1, float b2, glm::vec3 w) const {
+  if (!two_sided(light) && glm::dot(w, normals_[light]) <= 0.0f) return glm::vec3(0.0f);
+  return emission(light, b1, b2);
+}
+
+glm::vec3 Emitters::emission(std::uint32_t light, float b1, float b2) const {
   const Emission& e = emissions_[light_maps_[light]];
-  if (!e.double_sided && glm::dot(w, normals_[light]) <= 0.0f) return glm::vec3(0.0f);
   const std::optional<lightsampler::Texel> texel = sampler_->texel(light, b1, b2);
   if (!texel) return glm::vec3(0.0f);
   return e.strength * e.radiance[std::size_t(texel->y) * e.width + texel->x];

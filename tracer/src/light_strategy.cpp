@@ -13,9 +13,17 @@ std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,
   switch (options.kind) {
     case StrategyKind::uniform: return make_uniform_strategy(emitters);
     case StrategyKind::power: return make_power_strategy(emitters);
-    case StrategyKind::trs: return make_trs_strategy(emitters, options);
+    case StrategyKind::trs:
+    case StrategyKind::ris: return make_trs_strategy(emitters, options);
   }
   throw std::invalid_argument("unknown light strategy");
+}
+
+LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,
+                        float pdf, float mis_pdf) {
+  return {emitters.position(light, b1, b2), pdf,       emitters.normal(light),
+          mis_pdf,                          emitters.emission(light, b1, b2), light,
+          b1,                               b2,        emitters.two_sided(light)};
 }
 
 const char* to_string(StrategyKind kind) {
@@ -23,12 +31,14 @@ const char* to_string(StrategyKind kind) {
     case StrategyKind::uniform: return "uniform";
     case StrategyKind::power: return "power";
     case StrategyKind::trs: return "trs";
+    case StrategyKind::ris: return "ris";
   }
   return "?";
 }
 
 std::optional<StrategyKind> parse_strategy(const std::string& name) {
-  for (StrategyKind kind : {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs})
+  for (StrategyKind kind :
+       {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris})
     if (name == to_string(kind)) return kind;
   return std::nullopt;
 }

@@ -1,11 +1,14 @@
 #include "tracer/path_tracer.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 
+#include "luminance.h"
 #include "surface.h"
 
 namespace tracer {
@@ -61,12 +64,15 @@ struct PathTracer::Vertex {
 };
 
 PathTracer::PathTracer(const Scene& scene, const Geometry& geometry, const Emitters& emitters,
-                       const LightStrategy& strategy, unsigned max_depth)
+                       const LightStrategy& strategy, unsigned max_depth, unsigned candidates)
     : scene_(scene),
       geometry_(geometry),
       emitters_(emitters),
       strategy_(strategy),
-      max_depth_(max_depth) {}
+      max_depth_(max_depth),
+      candidates_(candidates) {
+  if (candidates_ == 0) throw std::invalid_argument("next-event estimation needs a candidate");
+}
 
 PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const {
   PathEstimate out;
@@ -112,32 +118,81 @@ glm::vec3 PathTracer::emitted(const Vertex& vertex, float bsdf_pdf, bool camera_
   return le * power_heuristic(bsdf_pdf, light_pdf);
 }
 
-/// Next-event estimation: one point from the strategy, weighed against BSDF sampling.
+/// A light sample seen from a shading point: what it would bring if nothing blocked it.
+struct PathTracer::Connection {
+  LightSample light;
+  glm::vec3 wi;
+  float distance;
+  float cos_light;
+  glm::vec3 unshadowed;  ///< f Le / (solid-angle density of the light sample), no MIS weight
+};
+
+std::optional<PathTracer::Connection> PathTracer::connect(const Vertex& vertex, const Bsdf& bsdf,
+                                                          const LightSample& s) const {
+  const glm::vec3 to_light = s.position - vertex.point.position;
+  const float distance = glm::length(to_light);
+  if (!(distance > 0.0f)) return std::nullopt;
+  const glm::vec3 wi = to_light / distance;
+  const glm::vec3 le = s.radiance_towards(-wi);
+  if (is_black(le)) return std::nullopt;
+  const glm::vec3& ng = vertex.point.geometric_normal;
+  if (glm::dot(wi, ng) * glm::dot(vertex.wo, ng) <= 0.0f) return std::nullopt;
+  const glm::vec3 f = bsdf.eval(vertex.wo, wi);
+  if (is_black(f)) return std::nullopt;
+  const float cos_light = glm::dot(-wi, s.normal);
+  const float pdf = solid_angle_density(s.pdf, distance, cos_light);
+  if (!(pdf > 0.0f)) return std::nullopt;
+  return Connection{s, wi, distance, cos_light, f * le / pdf};
+}
+
+/// Next-event estimation, weighed against BSDF sampling. With one candidate, one point from the
+/// strategy. With M, resampled importance sampling (Talbot et al. 2005): M points from the
+/// strategy, each weighed by the luminance of what it would bring unshadowed (target over
+/// source density), one kept in proportion to its weight and traced; its estimate times the
+/// weights' mean over its own weight is unbiased, the set of candidates drawn afresh per query.
+///
+/// MIS weighs the kept point with the strategy's own density (mis_pdf), the density the BSDF
+/// side weighs a hit with (emitted()), so that the two weights sum to one for every path. The
+/// resampled density itself has no closed form; it only sharpens the light side's estimate.
 glm::vec3 PathTracer::light_sample(const Vertex& vertex, const Bsdf& bsdf, PathRandom& random,
                                    std::uint64_t& rays) const {
-  const auto words = random.words();
-  const std::optional<LightSample> s = strategy_.sample({words[0], words[1], words[2]});
-  if (!s) return glm::vec3(0.0f);
-  const glm::vec3 to_light = s->position - vertex.point.position;
-  const float distance = glm::length(to_light);
-  if (!(distance > 0.0f)) return glm::vec3(0.0f);
-  const glm::vec3 wi = to_light / distance;
-  const glm::vec3 le = emitters_.radiance(s->light, s->b1, s->b2, -wi);
-  if (is_black(le)) return glm::vec3(0.0f);
+  std::optional<Connection> kept;
+  float kept_weight = 0.0f, weight_sum = 0.0f;
+  // In batches: a batch's candidates are fetched from memory together, then weighed.
+  constexpr unsigned kBatch = 16;
+  std::array<std::array<std::uint32_t, 4>, kBatch> words;
+  for (unsigned first = 0; first < candidates_; first += kBatch) {
+    const unsigned batch = std::min(kBatch, candidates_ - first);
+    for (unsigned i = 0; i < batch; ++i) {
+      words[i] = random.words();
+      strategy_.prefetch({words[i][0], words[i][1], words[i][2]});
+    }
+    for (unsigned i = 0; i < batch; ++i) {
+      const std::optional<LightSample> s = strategy_.sample({words[i][0], words[i][1], words[i][2]});
+      if (!s) continue;
+      std::optional<Connection> c = connect(vertex, bsdf, *s);
+      if (!c) continue;
+      const float weight = luminance(c->unshadowed);
+      if (!(weight > 0.0f)) continue;
+      weight_sum += weight;
+      // A one-slot reservoir: each candidate replaces the kept one with probability weight / sum.
+      if (lightsampler::uniform_float(words[i][3]) * weight_sum < weight) {
+        kept = std::move(c);
+        kept_weight = weight;
+      }
+    }
+  }
+  if (!kept) return glm::vec3(0.0f);
   const glm::vec3& ng = vertex.point.geometric_normal;
-  if (glm::dot(wi, ng) * glm::dot(vertex.wo, ng) <= 0.0f) return glm::vec3(0.0f);
-
-  const glm::vec3 f = bsdf.eval(vertex.wo, wi);
-  if (is_black(f)) return glm::vec3(0.0f);
-  const float cos_light = glm::dot(-wi, emitters_.normal(s->light));
-  const float pdf = solid_angle_density(s->pdf, distance, cos_light);
-  if (!(pdf > 0.0f)) return glm::vec3(0.0f);
   ++rays;
-  if (blocked(geometry_, vertex.point.position, ng, s->position, emitters_.normal(s->light)))
+  if (blocked(geometry_, vertex.point.position, ng, kept->light.position, kept->light.normal))
     return glm::vec3(0.0f);
-  const float weight =
-      power_heuristic(solid_angle_density(s->mis_pdf, distance, cos_light), bsdf.pdf(vertex.wo, wi));
-  return f * le * (weight / pdf);
+  const float mis = power_heuristic(
+      solid_angle_density(kept->light.mis_pdf, kept->distance, kept->cos_light),
+      bsdf.pdf(vertex.wo, kept->wi));
+  // One candidate: weight_sum / kept_weight is one, the plain estimate.
+  const float resampling = candidates_ == 1 ? 1.0f : weight_sum / (float(candidates_) * kept_weight);
+  return kept->unshadowed * (mis * resampling);
 }
 
 }  // namespace tracer

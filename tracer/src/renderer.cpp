@@ -75,7 +75,7 @@ lightsampler::SamplerOptions sampler_options(const RenderSettings& settings) {
   lightsampler::SamplerOptions options = settings.sampler;
   options.cpu.threads = settings.threads;
   // The subdivision speeds up drawing lights; the other strategies only read integrals and texels.
-  if (settings.strategy.kind != StrategyKind::trs) options.refinement = {};
+  if (!draws_point_lights(settings.strategy.kind)) options.refinement = {};
   return options;
 }
 
@@ -119,7 +119,8 @@ RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& pro
   if (settings.threads > 0)
     limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
   const std::size_t pixels = std::size_t(settings.width) * settings.height;
-  const PathTracer tracer(s.scene, s.geometry, s.emitters, *s.strategy, settings.max_depth);
+  const PathTracer tracer(s.scene, s.geometry, s.emitters, *s.strategy, settings.max_depth,
+                          connection_candidates(settings.strategy));
   const lightsampler::PhiloxKey key = path_key(settings.seed);
 
   RenderResult result;

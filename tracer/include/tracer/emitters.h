@@ -36,6 +36,10 @@ class Emitters {
 
   /// Radiance leaving a point of a light towards unit direction `w` (linear Rec. 709).
   glm::vec3 radiance(std::uint32_t light, float b1, float b2, glm::vec3 w) const;
+  /// Radiance leaving a point of a light towards its front, whatever the direction.
+  glm::vec3 emission(std::uint32_t light, float b1, float b2) const;
+  /// Whether a light emits from its back face too.
+  bool two_sided(std::uint32_t light) const { return emissions_[light_maps_[light]].double_sided; }
   /// Density of the point, luminance of its texel's radiance times strength, as sampled.
   float density(std::uint32_t light, float b1, float b2) const;
   /// The integral of the density over every light (the sampler's N-bar).

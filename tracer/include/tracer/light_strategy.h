@@ -16,17 +16,34 @@
 
 namespace tracer {
 
-struct LightSample {
-  std::uint32_t light;
-  float b1;
-  float b2;
+/// A point on the lights, with everything next-event estimation reads of it. `trs` writes one
+/// per point light every frame (its light records), so that a connection reads one aligned
+/// 64-byte line and looks up no texture.
+struct alignas(64) LightSample {
   glm::vec3 position;
   /// Area density (per world area) the estimator divides by.
   float pdf;
+  glm::vec3 normal;  ///< unit geometric normal of the light's front face
   /// Area density at this point as pdf() gives it, for MIS weights. Equal to `pdf` except for
   /// point-light sets, whose estimator carries the set's size (see TrsStrategy).
   float mis_pdf;
+  glm::vec3 radiance;  ///< emitted towards the front, and towards the back if two_sided
+  std::uint32_t light;
+  float b1;
+  float b2;
+  bool two_sided;
+
+  /// Radiance leaving the point towards unit direction `w`.
+  glm::vec3 radiance_towards(glm::vec3 w) const {
+    return two_sided || glm::dot(w, normal) > 0.0f ? radiance : glm::vec3(0.0f);
+  }
 };
+static_assert(sizeof(LightSample) == 64);
+
+/// The point (b1, b2) of a light with the densities given, its radiance and normal read from
+/// the emitters.
+LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,
+                        float pdf, float mis_pdf);
 
 struct LightFrame {
   double sampler_ms = 0.0;     ///< light-sampler time, milliseconds
@@ -34,6 +51,7 @@ struct LightFrame {
   std::uint64_t candidates = 0;  ///< points the rejection loops tried
   std::uint64_t exhausted = 0; ///< lights that reached the sampler's rejection limit (biased)
   std::vector<lightsampler::PassTime> passes;  ///< the sampler's time per pass
+  double records_ms = 0.0;     ///< writing the lights' records, milliseconds
 };
 
 class LightStrategy {
@@ -46,6 +64,9 @@ class LightStrategy {
   /// A point on the lights from three independent uniform 32-bit words; none when the
   /// lights have nothing to offer this frame.
   virtual std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random) const = 0;
+  /// Starts bringing what sample() will read for these words into the cache, so that a shading
+  /// point's candidates wait for memory together rather than one after another.
+  virtual void prefetch(const std::array<std::uint32_t, 3>& random) const { (void)random; }
   /// Area density with which sample() picks a point of a light; what a BSDF-sampled hit on the
   /// light weighs against.
   virtual float pdf(std::uint32_t light, float b1, float b2) const = 0;
@@ -56,13 +77,29 @@ class LightStrategy {
   virtual std::string device() const { return {}; }
 };
 
-enum class StrategyKind { uniform, power, trs };
+/// ris: candidates per shading point when none is given (docs/noise.md, "Resampled lights").
+inline constexpr unsigned kDefaultCandidates = 8;
+
+/// `ris` draws the point lights of `trs` and resamples them per shading point (PathTracer).
+enum class StrategyKind { uniform, power, trs, ris };
+
+/// Whether the strategy draws a set of point lights every frame.
+inline bool draws_point_lights(StrategyKind kind) {
+  return kind == StrategyKind::trs || kind == StrategyKind::ris;
+}
 
 struct StrategyOptions {
   StrategyKind kind = StrategyKind::trs;
-  double lights = 1e6;          ///< trs: expected point lights per frame (N_target)
-  std::uint64_t seed = 0;       ///< trs: frame f draws its set with a seed from (seed, f)
+  double lights = 1e6;          ///< trs, ris: expected point lights per frame (N_target)
+  std::uint64_t seed = 0;       ///< trs, ris: frame f draws its set with a seed from (seed, f)
+  unsigned candidates = kDefaultCandidates;  ///< ris: lights resampled per shading point
 };
+
+/// Light samples each next-event connection is resampled from (PathTracer): `candidates` for
+/// ris, one for the others.
+inline unsigned connection_candidates(const StrategyOptions& options) {
+  return options.kind == StrategyKind::ris ? options.candidates : 1;
+}
 
 /// Throws std::invalid_argument when the scene has no lights.
 std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,

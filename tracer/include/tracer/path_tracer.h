@@ -3,6 +3,8 @@
 // sample from the strategy and one BSDF sample, combined by multiple importance sampling with
 // the power heuristic. Lights are the scene's emissive triangles; there is no environment.
 
+#include <optional>
+
 #include <glm/glm.hpp>
 
 #include "tracer/bsdf.h"
@@ -33,15 +35,19 @@ struct PathEstimate {
 class PathTracer {
  public:
   /// `max_depth`: most surface interactions a path scatters at; 0 shows emitters only, 1 is
-  /// direct lighting.
+  /// direct lighting. `candidates`: light samples resampled into each connection (1: the
+  /// strategy's sample as it is; see light_sample()).
   PathTracer(const Scene& scene, const Geometry& geometry, const Emitters& emitters,
-             const LightStrategy& strategy, unsigned max_depth);
+             const LightStrategy& strategy, unsigned max_depth, unsigned candidates = 1);
 
   /// Radiance arriving along `ray` (one estimate); adds the rays it traces to `rays`.
   PathEstimate radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const;
 
  private:
   struct Vertex;
+  struct Connection;
+  std::optional<Connection> connect(const Vertex& vertex, const Bsdf& bsdf,
+                                    const LightSample& light) const;
   glm::vec3 emitted(const Vertex& vertex, float bsdf_pdf, bool camera_ray) const;
   glm::vec3 light_sample(const Vertex& vertex, const Bsdf& bsdf, PathRandom& random,
                          std::uint64_t& rays) const;
@@ -51,6 +57,7 @@ class PathTracer {
   const Emitters& emitters_;
   const LightStrategy& strategy_;
   unsigned max_depth_;
+  unsigned candidates_;
 };
 
 }  // namespace tracer

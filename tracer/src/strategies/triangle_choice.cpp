@@ -30,7 +30,7 @@ std::optional<LightSample> TriangleChoice::sample(
   const lightsampler::Barycentrics b = lightsampler::triangle_map(
       lightsampler::uniform_float(random[1]), lightsampler::uniform_float(random[2]));
   const float density = area_density_[light];
-  return LightSample{light, b.b1, b.b2, emitters_.position(light, b.b1, b.b2), density, density};
+  return light_point(emitters_, light, b.b1, b.b2, density, density);
 }
 
 float TriangleChoice::pdf(std::uint32_t light, float, float) const { return area_density_[light]; }
