@@ -157,7 +157,7 @@ TEST_F(RenderCliTest, RendersEveryStrategy) {
       EXPECT_GE(sampler_ms, 0.0);
     EXPECT_EQ(stats["light_records_ms_per_frame"].get<double>() > 0.0, point_lights);
     if (strategy == "ris")
-      EXPECT_EQ(settings["candidates"], 8);
+      EXPECT_EQ(settings["candidates"], 4);
     else
       EXPECT_TRUE(settings["candidates"].is_null());
   }

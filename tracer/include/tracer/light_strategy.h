@@ -78,7 +78,7 @@ class LightStrategy {
 };
 
 /// ris: candidates per shading point when none is given (docs/noise.md, "Resampled lights").
-inline constexpr unsigned kDefaultCandidates = 8;
+inline constexpr unsigned kDefaultCandidates = 4;
 
 /// `ris` draws the point lights of `trs` and resamples them per shading point (PathTracer).
 enum class StrategyKind { uniform, power, trs, ris };
