@@ -13,7 +13,7 @@ import unittest
 from pathlib import Path
 
 TOOLS = None  # set from the command line
-STRATEGIES = ["uniform", "power", "trs"]
+STRATEGIES = ["uniform", "power", "trs", "ris"]  # trs-study's default
 
 
 def study(*args):
@@ -45,6 +45,7 @@ class Study(unittest.TestCase):
         for name in ["convergence.png", "crops.png"]:
             self.assertEqual((self.out / name).read_bytes()[:8], b"\x89PNG\r\n\x1a\n", name)
         self.assertIn("lit pixels", (self.out / "summary.md").read_text())
+        self.assertIn("## Mean over the lit pixels", (self.out / "summary.md").read_text())
 
     def test_one_row_per_image_with_the_named_columns(self):
         rows = self.rows()
@@ -90,6 +91,9 @@ class Study(unittest.TestCase):
                     terms += list((a - b) ** 2 / (b ** 2 + 0.01))
             self.assertTrue(terms)
             self.assertAlmostEqual(float(r["relmse_lit_32"]) / np.mean(terms), 1.0, places=6, msg=r["image"])
+            lit = mask == 0
+            self.assertAlmostEqual(float(r["mean_ratio_lit"]), image[lit].mean() / reference[lit].mean(), places=6,
+                                   msg=r["image"])
 
     def test_plan_prints_one_render_per_line_and_collect_measures_them(self):
         planned = study(*self.args, "--plan")
