@@ -10,7 +10,8 @@
 // After drawing the set, a pass writes each light's record (LightSample): position, normal,
 // radiance and densities, so that a connection reads one line and no texture. The records are
 // written on the CPU whatever the sampler's backend: the path tracer that reads them runs there,
-// and a light's 12-byte sample crosses the bus instead of its 64-byte record.
+// a light's 12-byte sample crosses the bus instead of its 64-byte record, and the refined
+// sampler brings its lights back to the scene's triangles on the host just before.
 
 #include <chrono>
 #include <cstdlib>
