@@ -221,6 +221,20 @@ TEST_F(CliTest, RejectionMethodAndOrderedScan) {
   EXPECT_GT(stats["candidates"].get<std::uint64_t>(), stats["sample_count"].get<std::uint64_t>());
 }
 
+TEST_F(CliTest, NaiveStratificationOnTheCpuAndRefusedOnVulkan) {
+  const fs::path mesh = write_quad_gltf("quad.gltf");
+  const fs::path map = write_top_row_map("map.exr", 400.0f);
+  const RunResult result = run({mesh, map, "--method", "naive", "--backend", "cpu", "--count", "1000",
+                                "--stats", file("s.json")});
+  ASSERT_EQ(result.status, 0) << result.err;
+  const nlohmann::json stats = read_json(file("s.json"));
+  EXPECT_EQ(stats["method"], "naive");
+  EXPECT_GT(stats["sample_count"].get<std::uint64_t>(), 900u);
+  const RunResult vulkan = run({mesh, map, "--method", "naive", "--backend", "vulkan", "--count", "1000"});
+  EXPECT_NE(vulkan.status, 0);
+  EXPECT_NE(vulkan.err.find("trs-sample: error: "), std::string::npos) << vulkan.err;
+}
+
 // Density only in the top image row. OBJ puts v = 0 at the image's bottom, so the samples are at
 // the quad's high-v end (v_obj near 1); glTF puts v = 0 at the top, so they are at low v.
 TEST_F(CliTest, ObjAndGltfUvConventions) {

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "cpu/passes.h"
 #include "distribution_check.h"
 #include "lightsampler/triangle_map.h"
@@ -71,6 +73,44 @@ TEST(Distribution, RejectionSamplingMatchesTheDensity) {
     EXPECT_GT(result.dof, 100) << s.name;
     EXPECT_TRUE(result.passes(kAlpha)) << s.name << "\n" << result.describe();
   }
+}
+
+TEST(Distribution, NaiveStratificationMatchesTheDensity) {
+  for (const Scenario& s : trs_test::scenarios()) {
+    const Frame frame = generate(s, Method::naive);
+    EXPECT_EQ(frame.exhausted, 0u) << s.name;
+    const auto result = trs_test::test_per_triangle(s, frame.samples.span());
+    EXPECT_GT(result.dof, 100) << s.name << ": too few cells to have power";
+    EXPECT_TRUE(result.passes(kAlpha)) << s.name << "\n" << result.describe();
+  }
+}
+
+// Naive stratification counts by clipping what TRS counts by its closed form: the same N-bar_T
+// and D_T^max, up to rounding (it clips the realization's float texel-space triangle, the
+// closed form works from the UVs in double: a relative 1e-7 apart).
+TEST(Distribution, NaiveAndTrsCountTheSame) {
+  for (const Scenario& s : trs_test::scenarios()) {
+    const Frame trs = generate(s, Method::trs), naive = generate(s, Method::naive);
+    ASSERT_EQ(trs.expected_counts.size(), naive.expected_counts.size());
+    for (std::size_t t = 0; t < trs.expected_counts.size(); ++t) {
+      EXPECT_NEAR(naive.expected_counts[t], trs.expected_counts[t], 1e-6 * (1.0 + trs.expected_counts[t]))
+          << s.name << ", triangle " << t;
+      EXPECT_EQ(naive.max_density[t], trs.max_density[t]) << s.name << ", triangle " << t;
+    }
+  }
+}
+
+TEST(Distribution, RejectsNaiveStratificationWithWrongPieceWeights) {
+  // The pieces drawn in proportion to the square root of their density: the same support, the
+  // wrong shares.
+  const Scenario s = trs_test::scenarios()[2];
+  Frame frame = generate(s, Method::naive);
+  core::DensityMap flatter{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
+  for (float& texel : flatter.texels) texel = std::sqrt(texel);
+  cpu::naive_realize(trs_test::texel_triangles(s), {&flatter, 1}, frame.cdf.span(),
+                     frame.inverse_permutation.span(), stream_key(s.seed, Stream::naive), 1u << 20,
+                     frame.samples);
+  EXPECT_FALSE(trs_test::test_per_triangle(s, frame.samples.span()).passes(kAlpha));
 }
 
 TEST(Distribution, RejectsTrsThatIgnoresTheMaxDensity) {

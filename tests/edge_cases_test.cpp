@@ -134,7 +134,7 @@ TEST(EdgeCases, TexelIsTheOneDensityReads) {
 TEST(EdgeCases, AllZeroMapGivesNoSamplesWithOrWithoutTarget) {
   const Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
   const Map zero{std::vector<float>(16, 0.0f), 4, 4};
-  for (Method method : {Method::trs, Method::rejection}) {
+  for (Method method : {Method::trs, Method::rejection, Method::naive}) {
     for (FrameRequest request : {FrameRequest{}, target(1e6)}) {
       request.method = method;
       const Frame f = run(mesh, {zero}, request);
@@ -257,25 +257,46 @@ TEST(EdgeCases, CountsAreKeptUntilAMapChangesThenRecountedAsNew) {
   }
 }
 
+TEST(EdgeCases, NaiveAndTrsFramesOnOneSamplerEachCountTheirOwnWay) {
+  // Naive stratification keeps its counts like TRS, but its clipped counts are not the closed
+  // form's: a change of method counts anew, and each frame is what a new sampler gives.
+  const Mesh mesh = trs_test::random_triangles(200, 0.0f, 1.0f, 15);
+  const std::vector<Map> maps = {trs_test::random_map(24, 24, 0.5, 16)};
+  const DensityMapView view = maps[0].view();
+  auto sampler = make_cpu_sampler(mesh.view(), {&view, 1});
+  FrameRequest naive = target(1e4, 2);
+  naive.method = Method::naive;
+  Frame frame;
+  for (const FrameRequest& request : {target(1e4, 1), naive, naive, target(1e4, 3)}) {
+    const bool method_changed = frame.method != request.method || frame.samples.empty();
+    sampler->generate(request, frame);
+    EXPECT_EQ(frame.counting_used.has_value(), method_changed) << to_string(request.method);
+    trs_test::expect_same_frames(frame, run(mesh, maps, request));
+  }
+}
+
 TEST(EdgeCases, SameSeedSameSamplesOnAnyThreadCount) {
   const Mesh mesh = trs_test::random_triangles(500, 0.0f, 1.0f, 3);
   const Map map = trs_test::random_map(64, 64, 0.5, 4);
-  auto sorted_samples = [&](unsigned threads, ScanOrder scan) {
-    FrameRequest request = target(200000, 42);
-    request.scan = scan;
-    const Frame f = run(mesh, {map}, request, {threads});
-    std::vector<std::tuple<std::uint32_t, float, float>> v;
-    for (const Sample& s : f.samples) v.emplace_back(s.triangle, s.b1, s.b2);
-    return v;
-  };
-  auto ordered = sorted_samples(1, ScanOrder::ordered);
-  // The ordered scan fixes the output order: identical arrays.
-  EXPECT_EQ(ordered, sorted_samples(2, ScanOrder::ordered));
-  // The unordered scan permutes triangles' blocks, never the set of samples.
-  auto unordered = sorted_samples(2, ScanOrder::unordered);
-  std::sort(ordered.begin(), ordered.end());
-  std::sort(unordered.begin(), unordered.end());
-  EXPECT_EQ(ordered, unordered);
+  for (Method method : {Method::trs, Method::naive}) {
+    auto sorted_samples = [&](unsigned threads, ScanOrder scan) {
+      FrameRequest request = target(200000, 42);
+      request.scan = scan;
+      request.method = method;
+      const Frame f = run(mesh, {map}, request, {threads});
+      std::vector<std::tuple<std::uint32_t, float, float>> v;
+      for (const Sample& s : f.samples) v.emplace_back(s.triangle, s.b1, s.b2);
+      return v;
+    };
+    auto ordered = sorted_samples(1, ScanOrder::ordered);
+    // The ordered scan fixes the output order: identical arrays.
+    EXPECT_EQ(ordered, sorted_samples(2, ScanOrder::ordered)) << to_string(method);
+    // The unordered scan permutes triangles' blocks, never the set of samples.
+    auto unordered = sorted_samples(2, ScanOrder::unordered);
+    std::sort(ordered.begin(), ordered.end());
+    std::sort(unordered.begin(), unordered.end());
+    EXPECT_EQ(ordered, unordered) << to_string(method);
+  }
 }
 
 TEST(EdgeCases, SampleHelpersReadTheMesh) {

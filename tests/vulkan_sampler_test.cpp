@@ -222,6 +222,15 @@ TEST_F(VulkanSampler, SamplesFollowTheDensity) {
   }
 }
 
+// Naive stratification has no Vulkan passes: asking for it is an error, not another method.
+TEST_F(VulkanSampler, NaiveStratificationIsRefused) {
+  const trs_test::Scenario s = trs_test::scenarios()[0];
+  auto sampler = gpu(s.mesh, {s.map});
+  Frame f;
+  EXPECT_THROW(sampler->generate({.seed = 1, .target_count = 100, .method = Method::naive}, f),
+               std::invalid_argument);
+}
+
 TEST_F(VulkanSampler, RefinedSamplesFollowTheDensity) {
   // make_sampler with a refinement: the device samples the parts, the host brings them back.
   for (const trs_test::Scenario& s : trs_test::scenarios()) {

@@ -46,7 +46,14 @@ Float3 geometric_normal(const MeshView& mesh, const Sample& s) {
   return {n.x / len, n.y / len, n.z / len};
 }
 
-const char* to_string(Method method) { return method == Method::trs ? "trs" : "rs"; }
+const char* to_string(Method method) {
+  switch (method) {
+    case Method::trs: return "trs";
+    case Method::rejection: return "rs";
+    case Method::naive: return "naive";
+  }
+  return "?";
+}
 
 const char* to_string(ScanOrder scan) {
   switch (scan) {

@@ -107,6 +107,11 @@ const std::map<std::string, lightsampler::Counting> kCountings = {
     {"compute", lightsampler::Counting::compute},
     {"per-triangle", lightsampler::Counting::per_triangle}};
 
+const std::map<std::string, lightsampler::Method> kMethods = {
+    {"trs", lightsampler::Method::trs},
+    {"rs", lightsampler::Method::rejection},
+    {"naive", lightsampler::Method::naive}};
+
 /// Backends x methods, and for Vulkan TRS each counting path.
 std::vector<Variant> make_variants(const CommandLine& cl) {
   std::vector<Variant> variants;
@@ -114,7 +119,8 @@ std::vector<Variant> make_variants(const CommandLine& cl) {
     const bool vulkan = backend_name == "vulkan";
     const auto backend = vulkan ? lightsampler::Backend::vulkan : lightsampler::Backend::cpu;
     for (const auto& method_name : cl.methods) {
-      const auto method = method_name == "trs" ? lightsampler::Method::trs : lightsampler::Method::rejection;
+      const auto method = kMethods.at(method_name);
+      if (vulkan && method == lightsampler::Method::naive) continue;  // the CPU backend only
       if (!vulkan || method != lightsampler::Method::trs) {
         variants.push_back({backend, method, lightsampler::Counting::automatic});
         continue;
@@ -177,9 +183,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1u, 1u << 15))
       ->capture_default_str();
   app.add_option("--methods", cl.methods,
-                 "Methods: trs (Triangle Rejection Sampling), rs (plain rejection sampling)")
+                 "Methods: trs (Triangle Rejection Sampling), rs (plain rejection sampling), "
+                 "naive (naive triangle stratification; the CPU backend only)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"trs", "rs"}))
+      ->check(CLI::IsMember({"trs", "rs", "naive"}))
       ->capture_default_str();
   app.add_option("--backends", cl.backends, "Backends: cpu, vulkan (side by side)")
       ->delimiter(',')

@@ -12,7 +12,9 @@ namespace trs {
 namespace {
 
 const std::map<std::string, lightsampler::Method> kMethods = {
-    {"trs", lightsampler::Method::trs}, {"rs", lightsampler::Method::rejection}};
+    {"trs", lightsampler::Method::trs},
+    {"rs", lightsampler::Method::rejection},
+    {"naive", lightsampler::Method::naive}};
 const std::map<std::string, lightsampler::Counting> kCountings = {
     {"auto", lightsampler::Counting::automatic},
     {"raster", lightsampler::Counting::raster},
@@ -54,7 +56,9 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
   app.add_option("--density-scale", scale, "multiplies every texel of the map")
       ->check(kFiniteNonNegative)
       ->capture_default_str();
-  app.add_option("--method", method, "Triangle Rejection Sampling, or plain rejection sampling")
+  app.add_option("--method", method,
+                 "Triangle Rejection Sampling, plain rejection sampling, or naive triangle "
+                 "stratification (the CPU backend only)")
       ->check(CLI::IsMember(names(kMethods)))
       ->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads; 0: all hardware threads")

@@ -7,10 +7,6 @@
 namespace trs {
 namespace {
 
-const char* method_name(lightsampler::Method method) {
-  return method == lightsampler::Method::trs ? "trs" : "rs";
-}
-
 const char* addressing_name(lightsampler::Addressing addressing) {
   return addressing == lightsampler::Addressing::wrap ? "wrap" : "clamp";
 }
@@ -50,7 +46,7 @@ nlohmann::ordered_json stats_json(const RunReport& run) {
                  {"encoding", run.map.srgb_decoded ? "srgb" : "linear"},
                  {"address", addressing_name(run.options.addressing)},
                  {"scale", run.options.density_scale}};
-  json["method"] = method_name(frame.method);
+  json["method"] = lightsampler::to_string(frame.method);
   json["backend"] = lightsampler::to_string(run.sampler.backend());
   json["device"] = run.sampler.device();
   json["threads"] = threads(run);
@@ -81,7 +77,7 @@ void print_summary(std::ostream& out, const RunReport& run, std::optional<double
   out << "density map  " << run.map.file.string() << ": " << run.map.width << " x "
       << run.map.height << ", " << (run.map.srgb_decoded ? "sRGB" : "linear") << ", "
       << addressing_name(run.options.addressing) << ", scale " << run.options.density_scale << "\n";
-  out << "sampler      " << method_name(frame.method) << " on " << lightsampler::to_string(run.sampler.backend())
+  out << "sampler      " << lightsampler::to_string(frame.method) << " on " << lightsampler::to_string(run.sampler.backend())
       << " (" << run.sampler.device();
   if (threads(run) > 0) out << ", " << threads(run) << " threads";
   out << "), seed " << run.options.seed << ", scan " << lightsampler::to_string(frame.scan_used);

@@ -31,6 +31,7 @@ enum class Stream : std::uint32_t {
   realization = 1,  ///< TRS candidates: candidate j of segment s of triangle T
   rounding = 2,     ///< stochastic rounding, counter (triangle, 0, 0, 0)
   rejection = 3,    ///< plain rejection sampling: candidate j of segment s of the output
+  naive = 4,        ///< naive stratification: attempt a of slot k of triangle T
 };
 
 /// SplitMix64 finaliser: spreads a seed over all 64 bits.

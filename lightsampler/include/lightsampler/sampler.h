@@ -15,9 +15,11 @@
 
 namespace lightsampler {
 
-/// Triangle Rejection Sampling (the paper's method), or plain rejection sampling over the whole
-/// mesh (its Algorithm 1, the baseline).
-enum class Method { trs, rejection };
+/// Triangle Rejection Sampling (the paper's method); plain rejection sampling over the whole
+/// mesh (its Algorithm 1, a baseline); or naive triangle stratification (its Section 6
+/// baseline: each triangle walks its texels with a polygon clipper, counts by clipped area and
+/// draws texel piece by texel piece; the CPU backend only).
+enum class Method { trs, rejection, naive };
 
 /// How the per-triangle counts are turned into a CDF. `unordered` is the paper's Algorithm 3
 /// (one packed 64-bit atomic); `ordered` is a classic prefix sum. `automatic` takes the faster

@@ -76,25 +76,33 @@ class CpuSampler final : public Sampler {
     core::begin_frame(request, frame);
     Stopwatch total, pass;
     arena_.execute([&] {
-      if (request.method == Method::trs)
-        generate_trs(request, frame, pass);
-      else
+      if (request.method == Method::rejection)
         generate_rejection(request, frame, pass);
+      else
+        generate_stratified(request, frame, pass);
     });
     frame.total_ms = total.lap_ms();
   }
 
  private:
   /// N-bar_T and D_T^max change only through update_map: a frame recounts the triangles of the
-  /// maps replaced since the last count, and copies the rest.
-  void counting_pass(Frame& frame, Stopwatch& pass) {
-    const bool recount = !counted_ || std::find(stale_.begin(), stale_.end(), 1) != stale_.end();
+  /// maps replaced since the last count, and copies the rest. Naive stratification counts by
+  /// clipping, every triangle at once; a change between it and the closed form counts anew.
+  void counting_pass(Frame& frame, Stopwatch& pass, bool naive = false) {
+    const bool stale = std::find(stale_.begin(), stale_.end(), 1) != stale_.end();
+    const bool recount = !counted_ || stale || naive != counted_naive_;
     if (recount) {
-      expected_total_ = counted_ ? core::recount(scene_.triangles(), scene_.texel_triangles(), scene_.maps(), stale_,
-                                                 expected_counts_, max_density_)
-                                 : core::count(scene_.triangles(), scene_.texel_triangles(), scene_.maps(),
-                                               expected_counts_, max_density_);
+      if (naive)
+        expected_total_ = cpu::naive_count(scene_.triangles(), scene_.texel_triangles(), scene_.maps(),
+                                           expected_counts_, max_density_);
+      else if (counted_ && !counted_naive_)
+        expected_total_ = core::recount(scene_.triangles(), scene_.texel_triangles(), scene_.maps(), stale_,
+                                        expected_counts_, max_density_);
+      else
+        expected_total_ = core::count(scene_.triangles(), scene_.texel_triangles(), scene_.maps(),
+                                      expected_counts_, max_density_);
       counted_ = true;
+      counted_naive_ = naive;
       std::fill(stale_.begin(), stale_.end(), 0);
     }
     core::validate_expected_total(expected_total_);
@@ -111,8 +119,11 @@ class CpuSampler final : public Sampler {
     std::copy(from.span().begin(), from.span().end(), to.span().begin());
   }
 
-  void generate_trs(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
-    counting_pass(frame, pass);
+  /// Triangles as strata: TRS, or naive stratification (counting by clipping, realization
+  /// texel piece by texel piece); rounding and the scan are the same.
+  void generate_stratified(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
+    const bool naive = request.method == Method::naive;
+    counting_pass(frame, pass, naive);
 
     const double expected = frame.expected_total;
     const double scale = request.target_count ? (expected > 0 ? *request.target_count / expected : 0) : 1;
@@ -132,10 +143,13 @@ class CpuSampler final : public Sampler {
       frame.samples.resize(0);
       return;
     }
-    const cpu::RealizationResult r = cpu::realize(
-        scene_.texel_triangles(), scene_.maps(), frame.max_density.span(), frame.cdf.span(),
-        frame.inverse_permutation.span(), stream_key(request.seed, Stream::realization),
-        request.max_tries, frame.samples);
+    const cpu::RealizationResult r =
+        naive ? cpu::naive_realize(scene_.texel_triangles(), scene_.maps(), frame.cdf.span(),
+                                   frame.inverse_permutation.span(), stream_key(request.seed, Stream::naive),
+                                   request.max_tries, frame.samples)
+              : cpu::realize(scene_.texel_triangles(), scene_.maps(), frame.max_density.span(), frame.cdf.span(),
+                             frame.inverse_permutation.span(), stream_key(request.seed, Stream::realization),
+                             request.max_tries, frame.samples);
     frame.candidates = r.candidates;
     frame.exhausted = r.exhausted;
     frame.passes.push_back({Pass::realization, pass.lap_ms()});
@@ -175,6 +189,7 @@ class CpuSampler final : public Sampler {
   std::string device_;
   core::HostScene scene_;
   bool counted_ = false;
+  bool counted_naive_ = false;  ///< the kept counts are naive stratification's
   std::vector<std::uint8_t> stale_;  ///< per map: replaced since the last count
   Buffer<double> expected_counts_;
   Buffer<float> max_density_;

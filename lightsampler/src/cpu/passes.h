@@ -61,6 +61,24 @@ float rejection_distribution(std::span<const core::TriangleRecord> triangles,
                              std::span<const core::DensityMap> maps, Buffer<double>& area_cdf,
                              std::vector<std::uint32_t>& area_guide);
 
+/// Naive triangle stratification's counting (paper, Section 3.2): each triangle walks the
+/// texels it overlaps, clips each by polygon clipping (core/texel_pieces.h) and sums density
+/// times overlap area into N-bar_T, and the largest density met into D_T^max. Returns N-bar.
+double naive_count(std::span<const core::TriangleRecord> records,
+                   std::span<const core::TexelTriangle> triangles,
+                   std::span<const core::DensityMap> maps, Buffer<double>& expected_counts,
+                   Buffer<float>& max_density);
+
+/// Naive triangle stratification's realization: the N_T slots of triangle sigma^-1[p] start at
+/// cdf[p - 1]; each draws a texel piece of its triangle in proportion to density times area,
+/// then a uniform point in the piece. No rejection: a point is drawn again only when rounding
+/// puts it in another texel than its piece's (counted in candidates, bounded by max_tries).
+RealizationResult naive_realize(std::span<const core::TexelTriangle> triangles,
+                                std::span<const core::DensityMap> maps,
+                                std::span<const std::uint64_t> cdf,
+                                std::span<const std::uint32_t> inverse_permutation, PhiloxKey key,
+                                std::uint32_t max_tries, Buffer<Sample>& samples);
+
 /// The time of `runs` passes writing `count` samples to host memory with the backend's threads
 /// (the floor under realization), in milliseconds. Each pass writes every sample anew.
 std::vector<double> sample_write_ms(const CpuOptions& options, std::uint64_t count, int runs);
