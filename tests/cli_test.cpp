@@ -221,18 +221,21 @@ TEST_F(CliTest, RejectionMethodAndOrderedScan) {
   EXPECT_GT(stats["candidates"].get<std::uint64_t>(), stats["sample_count"].get<std::uint64_t>());
 }
 
-TEST_F(CliTest, NaiveStratificationOnTheCpuAndRefusedOnVulkan) {
+TEST_F(CliTest, NaiveAndFastRejectionSamplingOnTheCpuAndRefusedOnVulkan) {
   const fs::path mesh = write_quad_gltf("quad.gltf");
   const fs::path map = write_top_row_map("map.exr", 400.0f);
-  const RunResult result = run({mesh, map, "--method", "naive", "--backend", "cpu", "--count", "1000",
-                                "--stats", file("s.json")});
-  ASSERT_EQ(result.status, 0) << result.err;
-  const nlohmann::json stats = read_json(file("s.json"));
-  EXPECT_EQ(stats["method"], "naive");
-  EXPECT_GT(stats["sample_count"].get<std::uint64_t>(), 900u);
-  const RunResult vulkan = run({mesh, map, "--method", "naive", "--backend", "vulkan", "--count", "1000"});
-  EXPECT_NE(vulkan.status, 0);
-  EXPECT_NE(vulkan.err.find("trs-sample: error: "), std::string::npos) << vulkan.err;
+  for (const std::string method : {"naive", "frs"}) {
+    const RunResult result = run({mesh, map, "--method", method, "--backend", "cpu", "--count", "1000",
+                                  "--stats", file("s.json")});
+    ASSERT_EQ(result.status, 0) << result.err;
+    const nlohmann::json stats = read_json(file("s.json"));
+    EXPECT_EQ(stats["method"], method);
+    EXPECT_GT(stats["sample_count"].get<std::uint64_t>(), 900u);
+    EXPECT_EQ(stats["setup_bytes"].get<std::uint64_t>() > 0, method == "frs");
+    const RunResult vulkan = run({mesh, map, "--method", method, "--backend", "vulkan", "--count", "1000"});
+    EXPECT_NE(vulkan.status, 0);
+    EXPECT_NE(vulkan.err.find("trs-sample: error: "), std::string::npos) << vulkan.err;
+  }
 }
 
 // Density only in the top image row. OBJ puts v = 0 at the image's bottom, so the samples are at

@@ -41,6 +41,7 @@ inline constexpr FamilyMember kDistributionFamily[] = {
     {"CPU TRS (distribution_test)", true},
     {"CPU rejection sampling (distribution_test)", true},
     {"CPU naive stratification (distribution_test)", true},
+    {"CPU fast rejection sampling (distribution_test)", true},
     {"CPU refined TRS (refinement_test)", true},
     {"refinement: the correctly mapped samples (refinement_test)", false},
     {"Vulkan TRS, compute counting (vulkan_sampler_test)", true},

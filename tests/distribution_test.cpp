@@ -10,6 +10,7 @@
 
 #include <cmath>
 
+#include "cpu/frs.h"
 #include "cpu/passes.h"
 #include "distribution_check.h"
 #include "lightsampler/triangle_map.h"
@@ -111,6 +112,31 @@ TEST(Distribution, RejectsNaiveStratificationWithWrongPieceWeights) {
                      frame.inverse_permutation.span(), stream_key(s.seed, Stream::naive), 1u << 20,
                      frame.samples);
   EXPECT_FALSE(trs_test::test_per_triangle(s, frame.samples.span()).passes(kAlpha));
+}
+
+TEST(Distribution, FastRejectionSamplingMatchesTheDensity) {
+  for (const Scenario& s : trs_test::scenarios()) {
+    const Frame frame = generate(s, Method::frs);
+    EXPECT_EQ(frame.exhausted, 0u) << s.name;
+    EXPECT_GT(frame.setup_bytes, 0u) << s.name;
+    const auto result = trs_test::test_all_cells(s, frame.samples.span());
+    EXPECT_GT(result.dof, 100) << s.name;
+    EXPECT_TRUE(result.passes(kAlpha)) << s.name << "\n" << result.describe();
+  }
+}
+
+TEST(Distribution, RejectsFastRejectionSamplingWithHalvedBounds) {
+  // Every micro-triangle's bound halved: its brighter texels are accepted as often as dimmer ones.
+  const Scenario s = trs_test::scenarios()[2];
+  Frame frame = generate(s, Method::frs);
+  const core::DensityMap map{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
+  const auto records = core::make_triangle_records(s.mesh.view(), 1);
+  const auto tris = trs_test::texel_triangles(s);
+  cpu::FrsTable table = cpu::frs_build(records, tris, {&map, 1});
+  for (float& b : table.bound) b *= 0.5f;
+  cpu::frs_sample(table, tris, {&map, 1}, frame.sample_count, stream_key(s.seed, Stream::frs), 1u << 20,
+                  frame.samples);
+  EXPECT_FALSE(trs_test::test_all_cells(s, frame.samples.span()).passes(kAlpha));
 }
 
 TEST(Distribution, RejectsTrsThatIgnoresTheMaxDensity) {

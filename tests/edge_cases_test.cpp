@@ -134,7 +134,7 @@ TEST(EdgeCases, TexelIsTheOneDensityReads) {
 TEST(EdgeCases, AllZeroMapGivesNoSamplesWithOrWithoutTarget) {
   const Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
   const Map zero{std::vector<float>(16, 0.0f), 4, 4};
-  for (Method method : {Method::trs, Method::rejection, Method::naive}) {
+  for (Method method : {Method::trs, Method::rejection, Method::naive, Method::frs}) {
     for (FrameRequest request : {FrameRequest{}, target(1e6)}) {
       request.method = method;
       const Frame f = run(mesh, {zero}, request);
@@ -275,10 +275,36 @@ TEST(EdgeCases, NaiveAndTrsFramesOnOneSamplerEachCountTheirOwnWay) {
   }
 }
 
+TEST(EdgeCases, FastRejectionSamplingBuildsOnceAndAgainAfterAMapChanges) {
+  // The subdivision is FRS's set-up: timed as the `distribution` pass of the frame that builds
+  // it, and redone after update_map, when the frame is the one a new sampler gives.
+  const Mesh mesh = trs_test::random_triangles(100, 0.0f, 1.0f, 25);
+  std::vector<Map> maps = {trs_test::random_map(32, 32, 0.5, 26)};
+  DensityMapView view = maps[0].view();
+  auto sampler = make_cpu_sampler(mesh.view(), {&view, 1});
+  const auto built = [](const Frame& f) {
+    return std::any_of(f.passes.begin(), f.passes.end(), [](const PassTime& p) { return p.pass == Pass::distribution; });
+  };
+  FrameRequest frs = target(1e4, 1);
+  frs.method = Method::frs;
+  Frame frame;
+  for (int f = 0; f < 2; ++f) {
+    sampler->generate(frs, frame);
+    EXPECT_EQ(built(frame), f == 0);
+    EXPECT_GT(frame.setup_bytes, 0u);
+  }
+  maps[0] = trs_test::random_map(32, 32, 0.2, 27);
+  view = maps[0].view();
+  sampler->update_map(0, view);
+  sampler->generate(frs, frame);
+  EXPECT_TRUE(built(frame));
+  trs_test::expect_same_frames(frame, run(mesh, maps, frs));
+}
+
 TEST(EdgeCases, SameSeedSameSamplesOnAnyThreadCount) {
   const Mesh mesh = trs_test::random_triangles(500, 0.0f, 1.0f, 3);
   const Map map = trs_test::random_map(64, 64, 0.5, 4);
-  for (Method method : {Method::trs, Method::naive}) {
+  for (Method method : {Method::trs, Method::naive, Method::frs}) {
     auto sorted_samples = [&](unsigned threads, ScanOrder scan) {
       FrameRequest request = target(200000, 42);
       request.scan = scan;

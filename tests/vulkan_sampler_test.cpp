@@ -222,13 +222,15 @@ TEST_F(VulkanSampler, SamplesFollowTheDensity) {
   }
 }
 
-// Naive stratification has no Vulkan passes: asking for it is an error, not another method.
-TEST_F(VulkanSampler, NaiveStratificationIsRefused) {
+// Naive stratification and FRS have no Vulkan passes: asking for them is an error, not another
+// method.
+TEST_F(VulkanSampler, NaiveStratificationAndFrsAreRefused) {
   const trs_test::Scenario s = trs_test::scenarios()[0];
   auto sampler = gpu(s.mesh, {s.map});
   Frame f;
-  EXPECT_THROW(sampler->generate({.seed = 1, .target_count = 100, .method = Method::naive}, f),
-               std::invalid_argument);
+  for (Method method : {Method::naive, Method::frs})
+    EXPECT_THROW(sampler->generate({.seed = 1, .target_count = 100, .method = method}, f), std::invalid_argument)
+        << to_string(method);
 }
 
 TEST_F(VulkanSampler, RefinedSamplesFollowTheDensity) {

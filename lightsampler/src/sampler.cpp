@@ -51,6 +51,7 @@ const char* to_string(Method method) {
     case Method::trs: return "trs";
     case Method::rejection: return "rs";
     case Method::naive: return "naive";
+    case Method::frs: return "frs";
   }
   return "?";
 }

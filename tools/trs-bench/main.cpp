@@ -110,7 +110,8 @@ const std::map<std::string, lightsampler::Counting> kCountings = {
 const std::map<std::string, lightsampler::Method> kMethods = {
     {"trs", lightsampler::Method::trs},
     {"rs", lightsampler::Method::rejection},
-    {"naive", lightsampler::Method::naive}};
+    {"naive", lightsampler::Method::naive},
+    {"frs", lightsampler::Method::frs}};
 
 /// Backends x methods, and for Vulkan TRS each counting path.
 std::vector<Variant> make_variants(const CommandLine& cl) {
@@ -120,7 +121,8 @@ std::vector<Variant> make_variants(const CommandLine& cl) {
     const auto backend = vulkan ? lightsampler::Backend::vulkan : lightsampler::Backend::cpu;
     for (const auto& method_name : cl.methods) {
       const auto method = kMethods.at(method_name);
-      if (vulkan && method == lightsampler::Method::naive) continue;  // the CPU backend only
+      const bool cpu_only = method == lightsampler::Method::naive || method == lightsampler::Method::frs;
+      if (vulkan && cpu_only) continue;
       if (!vulkan || method != lightsampler::Method::trs) {
         variants.push_back({backend, method, lightsampler::Counting::automatic});
         continue;
@@ -184,9 +186,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--methods", cl.methods,
                  "Methods: trs (Triangle Rejection Sampling), rs (plain rejection sampling), "
-                 "naive (naive triangle stratification; the CPU backend only)")
+                 "naive (naive triangle stratification), frs (fast rejection sampling; naive and "
+                 "frs on the CPU backend only)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"trs", "rs", "naive"}))
+      ->check(CLI::IsMember({"trs", "rs", "naive", "frs"}))
       ->capture_default_str();
   app.add_option("--backends", cl.backends, "Backends: cpu, vulkan (side by side)")
       ->delimiter(',')

@@ -50,17 +50,22 @@ Measurement measure(lightsampler::Sampler& sampler, lightsampler::Frame& frame,
                     const MeasureSettings& settings, std::span<const lightsampler::DensityMapView> maps) {
   const auto start = Clock::now();
   const auto within_budget = [&] { return seconds_since(start) < settings.budget_s; };
+  Measurement m;
   const auto generate = [&] {
     if (settings.recount)
       for (std::size_t i = 0; i < maps.size(); ++i) sampler.update_map(i, maps[i]);
     sampler.generate(request, frame);
+    // A method's set-up (FRS's table): the distribution pass of the frame that built it.
+    if (frame.setup_bytes == 0) return;
+    m.setup_bytes = frame.setup_bytes;
+    for (const lightsampler::PassTime& p : frame.passes)
+      if (p.pass == lightsampler::Pass::distribution) m.setup_ms = p.ms;
   };
 
   // Warm-up: first touch of the frame's buffers, the thread pool, the caches.
   request.seed = first_seed;
   for (int i = 0; i < settings.warmup && within_budget(); ++i, ++request.seed) generate();
 
-  Measurement m;
   PassSeries passes;
   std::vector<double> totals, walls;
   double samples = 0, candidates = 0;

@@ -31,6 +31,9 @@ struct Measurement {
   std::vector<lightsampler::PassTime> pass_medians;  ///< in the order the passes ran
   double total_ms = 0;  ///< median of Frame::total_ms
   double wall_ms = 0;   ///< median time around generate(), as a caller sees it
+  /// A method's set-up kept between frames (FRS), apart from the frames: its time and memory.
+  double setup_ms = 0;
+  std::uint64_t setup_bytes = 0;
 
   /// False for frames stopped before the realization (FrameRequest::realize off): N is known
   /// but no sample was drawn.

@@ -109,7 +109,8 @@ std::string csv_text(const std::vector<CaseResult>& results) {
       "experiment,mesh,triangles,map,map_size,method,scan,target,status,runs,samples,candidates,"
       "acceptance,exhausted";
   for (const auto& name : passes) text += "," + name + "_ms";
-  text += ",total_ms,wall_ms,samples_per_s,threads,backend,engine,device,estimate_ms,refine,floor_ms,floor_multiple\n";
+  text += ",total_ms,wall_ms,samples_per_s,threads,backend,engine,device,estimate_ms,refine,floor_ms,floor_multiple,"
+          "setup_ms,setup_bytes\n";
   for (const auto& r : results) {
     text += r.experiment + "," + r.mesh + "," + std::to_string(r.triangles) + "," + r.map + "," +
             std::to_string(r.map_size) + "," + r.method + "," + r.scan + "," +
@@ -132,7 +133,10 @@ std::string csv_text(const std::vector<CaseResult>& results) {
             csv_quote(r.device) + ',';
     text += (r.measured ? "" : format("%.6g", r.estimate_ms)) + format(",%g,", r.refine);
     text += r.floor_ms ? format("%.6g,", *r.floor_ms) : ",";
-    text += r.floor_ms && r.measured ? format("%.6g\n", r.measured->total_ms / *r.floor_ms) : "\n";
+    text += r.floor_ms && r.measured ? format("%.6g,", r.measured->total_ms / *r.floor_ms) : ",";
+    text += r.measured && r.measured->setup_bytes ? format("%.6g,%llu\n", r.measured->setup_ms,
+                                                           static_cast<unsigned long long>(r.measured->setup_bytes))
+                                                  : ",\n";
   }
   return text;
 }

@@ -21,7 +21,7 @@ struct CaseResult {
   std::uint64_t triangles = 0;
   std::string map;
   std::uint32_t map_size = 0;
-  std::string method;  ///< "trs", "rs" or "naive" (lightsampler::to_string)
+  std::string method;  ///< "trs", "rs", "naive" or "frs" (lightsampler::to_string)
   std::string scan;    ///< the scan order used; "-" for plain rejection sampling
   double target = 0;
   std::string backend;

@@ -14,7 +14,8 @@ namespace {
 const std::map<std::string, lightsampler::Method> kMethods = {
     {"trs", lightsampler::Method::trs},
     {"rs", lightsampler::Method::rejection},
-    {"naive", lightsampler::Method::naive}};
+    {"naive", lightsampler::Method::naive},
+    {"frs", lightsampler::Method::frs}};
 const std::map<std::string, lightsampler::Counting> kCountings = {
     {"auto", lightsampler::Counting::automatic},
     {"raster", lightsampler::Counting::raster},
@@ -57,8 +58,8 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
       ->check(kFiniteNonNegative)
       ->capture_default_str();
   app.add_option("--method", method,
-                 "Triangle Rejection Sampling, plain rejection sampling, or naive triangle "
-                 "stratification (the CPU backend only)")
+                 "Triangle Rejection Sampling, plain rejection sampling, naive triangle "
+                 "stratification or fast rejection sampling (FRS; these two on the CPU backend only)")
       ->check(CLI::IsMember(names(kMethods)))
       ->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads; 0: all hardware threads")

@@ -64,6 +64,7 @@ nlohmann::ordered_json stats_json(const RunReport& run) {
   json["candidates"] = frame.candidates;
   json["acceptance_rate"] = rate ? nlohmann::ordered_json(*rate) : nlohmann::ordered_json(nullptr);
   json["exhausted"] = frame.exhausted;
+  json["setup_bytes"] = frame.setup_bytes;
   json["ms"] = ms;
   json["out"] = run.options.out ? nlohmann::ordered_json(run.options.out->string())
                                 : nlohmann::ordered_json(nullptr);
@@ -100,6 +101,8 @@ void print_summary(std::ostream& out, const RunReport& run, std::optional<double
     out << lightsampler::to_string(pass.pass) << " " << format("%.3f", pass.ms) << " ms, ";
   }
   out << "total " << format("%.3f", frame.total_ms) << " ms\n";
+  if (frame.setup_bytes > 0)
+    out << "set-up       " << format("%.3g", frame.setup_bytes / 1048576.0) << " MiB kept between frames\n";
   if (frame.total_ms > 0) {
     out << "rate         " << format("%.3g", frame.sample_count / (frame.total_ms * 1e-3))
         << " samples/s\n";

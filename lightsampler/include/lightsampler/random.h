@@ -32,6 +32,7 @@ enum class Stream : std::uint32_t {
   rounding = 2,     ///< stochastic rounding, counter (triangle, 0, 0, 0)
   rejection = 3,    ///< plain rejection sampling: candidate j of segment s of the output
   naive = 4,        ///< naive stratification: attempt a of slot k of triangle T
+  frs = 5,          ///< fast rejection sampling: candidate j of segment s of the output
 };
 
 /// SplitMix64 finaliser: spreads a seed over all 64 bits.

@@ -16,10 +16,12 @@
 namespace lightsampler {
 
 /// Triangle Rejection Sampling (the paper's method); plain rejection sampling over the whole
-/// mesh (its Algorithm 1, a baseline); or naive triangle stratification (its Section 6
-/// baseline: each triangle walks its texels with a polygon clipper, counts by clipped area and
-/// draws texel piece by texel piece; the CPU backend only).
-enum class Method { trs, rejection, naive };
+/// mesh (its Algorithm 1, a baseline); naive triangle stratification (its Section 6 baseline:
+/// each triangle walks its texels with a polygon clipper, counts by clipped area and draws texel
+/// piece by texel piece); or fast rejection sampling after Šik and Křivánek (2013: the mesh
+/// subdivided once until the density is nearly constant on each part, then rejection against
+/// each part's bound, parts drawn from one CDF). naive and frs run on the CPU backend only.
+enum class Method { trs, rejection, naive, frs };
 
 /// How the per-triangle counts are turned into a CDF. `unordered` is the paper's Algorithm 3
 /// (one packed 64-bit atomic); `ordered` is a classic prefix sum. `automatic` takes the faster
@@ -63,7 +65,7 @@ struct FrameRequest {
 };
 
 /// The passes a frame times. `distribution` is plain rejection sampling's set-up (area CDF and
-/// bound), `readback` the Vulkan backend's copy to the host, `refinement` the adaptive
+/// bound) or FRS's (its subdivision and CDF, when built), `readback` the Vulkan backend's copy to the host, `refinement` the adaptive
 /// subdivision's mapping of samples back to the caller's triangles.
 enum class Pass { counting, rounding, scan, realization, distribution, readback, refinement };
 
@@ -85,6 +87,9 @@ struct Frame {
   std::uint64_t sample_count = 0;   ///< N, the effective total
   std::uint64_t candidates = 0;     ///< candidates tried; sample_count / candidates = acceptance rate
   std::uint64_t exhausted = 0;      ///< slots filled after max_tries rejections in a row
+  /// Memory a method keeps between frames, bytes: FRS's micro-triangles and their CDF (built in
+  /// the frame whose `distribution` pass is timed, the first or the first after update_map).
+  std::uint64_t setup_bytes = 0;
   Method method = Method::trs;
   ScanOrder scan_used = ScanOrder::ordered;
   /// The counting path that ran; none when the counts of an earlier frame still held (no map

@@ -4,9 +4,15 @@
 // lightsampler::philox4x32, uniform_float and triangle_map, lane by lane, so every candidate is
 // bit for bit the one the GPU draws.
 
+#include <atomic>
 #include <cstdint>
+#include <span>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "core/candidate_stream.h"
+#include "cpu/passes.h"
 #include "lightsampler/random.h"
 #include "lightsampler/sample.h"
 
@@ -47,6 +53,21 @@ void walk_segment(const core::SegmentRun& run, std::uint32_t max_tries, Sample* 
     fill.take(draw(first, candidates), kLanes, [&](int l, std::uint64_t slot) { out[slot] = candidates[l]; });
   tally.candidates += fill.tries();
   tally.exhausted += fill.exhausted();
+}
+
+/// Walks the output, whose element e holds the slots cdf[e - 1] .. cdf[e] - 1 (inclusive CDF),
+/// in tasks of `grain` slots: `walk(run, tally)` fills the slots of one segment run (walk_segment).
+template <class Walk>
+RealizationResult walk_output(std::span<const std::uint64_t> cdf, std::uint64_t grain, const Walk& walk) {
+  const std::uint64_t n = cdf.empty() ? 0 : cdf.back();
+  std::atomic<std::uint64_t> candidates{0}, exhausted{0};
+  tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, n, grain), [&](const tbb::blocked_range<std::uint64_t>& r) {
+    WalkTally tally;
+    core::for_each_segment(cdf, r.begin(), r.end(), [&](const core::SegmentRun& run) { walk(run, tally); });
+    candidates.fetch_add(tally.candidates, std::memory_order_relaxed);
+    exhausted.fetch_add(tally.exhausted, std::memory_order_relaxed);
+  });
+  return {candidates.load(), exhausted.load()};
 }
 
 }  // namespace lightsampler::cpu

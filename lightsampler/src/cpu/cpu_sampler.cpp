@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "core/frame_policy.h"
 #include "core/host_scene.h"
 #include "core/validate.h"
+#include "cpu/frs.h"
 #include "cpu/passes.h"
 
 namespace lightsampler {
@@ -62,6 +64,7 @@ class CpuSampler final : public Sampler {
   void update_map(std::size_t index, const DensityMapView& map) override {
     arena_.execute([&] { scene_.update_map(index, map); });
     stale_[index] = 1;
+    frs_.reset();
   }
 
   float density(std::uint32_t triangle, float b1, float b2) const override {
@@ -78,6 +81,8 @@ class CpuSampler final : public Sampler {
     arena_.execute([&] {
       if (request.method == Method::rejection)
         generate_rejection(request, frame, pass);
+      else if (request.method == Method::frs)
+        generate_frs(request, frame, pass);
       else
         generate_stratified(request, frame, pass);
     });
@@ -185,6 +190,33 @@ class CpuSampler final : public Sampler {
     frame.passes.push_back({Pass::realization, pass.lap_ms()});
   }
 
+  /// FRS: the table is built once, and again after update_map; a frame draws from it.
+  void generate_frs(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
+    for (auto* b : {&frame.counts, &frame.cdf}) b->resize(0);
+    frame.inverse_permutation.resize(0);
+    frame.expected_counts.resize(0);
+    frame.max_density.resize(0);
+    if (!frs_) {
+      frs_ = cpu::frs_build(scene_.triangles(), scene_.texel_triangles(), scene_.maps());
+      frame.passes.push_back({Pass::distribution, pass.lap_ms()});
+    }
+    frame.expected_total = frs_->expected_total;
+    frame.setup_bytes = frs_->bytes();
+    const double target = request.target_count.value_or(frs_->expected_total);
+    frame.sample_count = core::rejection_sample_count(target, frs_->max_bound, frs_->total_area, request.seed);
+    frame.scan_used = ScanOrder::ordered;
+    if (!request.realize) {
+      frame.samples.resize(0);
+      return;
+    }
+    const cpu::RealizationResult r =
+        cpu::frs_sample(*frs_, scene_.texel_triangles(), scene_.maps(), frame.sample_count,
+                        stream_key(request.seed, Stream::frs), request.max_tries, frame.samples);
+    frame.candidates = r.candidates;
+    frame.exhausted = r.exhausted;
+    frame.passes.push_back({Pass::realization, pass.lap_ms()});
+  }
+
   tbb::task_arena arena_;
   std::string device_;
   core::HostScene scene_;
@@ -194,6 +226,7 @@ class CpuSampler final : public Sampler {
   Buffer<double> expected_counts_;
   Buffer<float> max_density_;
   double expected_total_ = 0.0;
+  std::optional<cpu::FrsTable> frs_;
   Buffer<double> area_cdf_;
   std::vector<std::uint32_t> area_guide_;
 };

@@ -1,8 +1,3 @@
-#include <atomic>
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include "cpu/candidates.h"
 #include "cpu/passes.h"
 
@@ -20,35 +15,26 @@ RealizationResult realize(std::span<const core::TexelTriangle> triangles,
                           std::span<const std::uint64_t> cdf,
                           std::span<const std::uint32_t> inverse_permutation, PhiloxKey key,
                           std::uint32_t max_tries, Buffer<Sample>& samples) {
-  const std::uint64_t n = cdf.empty() ? 0 : cdf.back();
-  samples.resize(n);
-  std::atomic<std::uint64_t> candidates{0}, exhausted{0};
-  tbb::parallel_for(
-      tbb::blocked_range<std::uint64_t>(0, n, kSamplesPerTask), [&](const tbb::blocked_range<std::uint64_t>& r) {
-        WalkTally tally;
-        core::for_each_segment(cdf, r.begin(), r.end(), [&](const core::SegmentRun& run) {
-          const std::uint32_t tri = inverse_permutation[run.position];
-          const core::TexelTriangle& t = triangles[tri];
-          // N_T > 0, so the triangle has a map and a positive bound.
-          const core::DensityMap& map = maps[t.map];
-          const float bound = max_density[tri];
-          CandidateBatch batch;
-          auto draw = [&](std::uint64_t first, Sample(&out)[kLanes]) {
-            std::uint32_t accepted = 0;
-            draw_candidates(tri, run.segment, first, key, batch);
-            for (int l = 0; l < kLanes; ++l) {
-              const auto [x, y] = core::texel_space_point(t, batch.b1[l], batch.b2[l]);
-              accepted |= std::uint32_t(batch.accept[l] * bound < core::point_density(map, x, y)) << l;
-              out[l] = {tri, batch.b1[l], batch.b2[l]};
-            }
-            return accepted;
-          };
-          walk_segment(run, max_tries, samples.data() + run.first, draw, tally);
-        });
-        candidates.fetch_add(tally.candidates, std::memory_order_relaxed);
-        exhausted.fetch_add(tally.exhausted, std::memory_order_relaxed);
-      });
-  return {candidates.load(), exhausted.load()};
+  samples.resize(cdf.empty() ? 0 : cdf.back());
+  return walk_output(cdf, kSamplesPerTask, [&](const core::SegmentRun& run, WalkTally& tally) {
+    const std::uint32_t tri = inverse_permutation[run.position];
+    const core::TexelTriangle& t = triangles[tri];
+    // N_T > 0, so the triangle has a map and a positive bound.
+    const core::DensityMap& map = maps[t.map];
+    const float bound = max_density[tri];
+    CandidateBatch batch;
+    auto draw = [&](std::uint64_t first, Sample(&out)[kLanes]) {
+      std::uint32_t accepted = 0;
+      draw_candidates(tri, run.segment, first, key, batch);
+      for (int l = 0; l < kLanes; ++l) {
+        const auto [x, y] = core::texel_space_point(t, batch.b1[l], batch.b2[l]);
+        accepted |= std::uint32_t(batch.accept[l] * bound < core::point_density(map, x, y)) << l;
+        out[l] = {tri, batch.b1[l], batch.b2[l]};
+      }
+      return accepted;
+    };
+    walk_segment(run, max_tries, samples.data() + run.first, draw, tally);
+  });
 }
 
 }  // namespace lightsampler::cpu

@@ -1,5 +1,4 @@
 #include <algorithm>
-#include <atomic>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -7,8 +6,7 @@
 #include <tbb/parallel_scan.h>
 
 #include "core/area_pick.h"
-#include "cpu/passes.h"
-#include "cpu/candidates.h"
+#include "cpu/cdf_rejection.h"
 
 namespace lightsampler::cpu {
 
@@ -47,36 +45,11 @@ RealizationResult rejection_sample(std::span<const core::TexelTriangle> triangle
                                    std::span<const core::DensityMap> maps, std::span<const double> area_cdf,
                                    std::span<const std::uint32_t> area_guide, float global_max_density, std::uint64_t sample_count,
                                    PhiloxKey key, std::uint32_t max_tries, Buffer<Sample>& samples) {
-  samples.resize(sample_count);
-  if (sample_count == 0) return {0, 0};
-  // The whole output is one run of segments, as if one triangle held every sample.
-  const std::uint64_t output[1] = {sample_count};
-  std::atomic<std::uint64_t> candidates{0}, exhausted{0};
-  tbb::parallel_for(
-      // Small blocks: a sample may try hundreds of candidates, and small counts must still
-      // spread over every thread.
-      tbb::blocked_range<std::uint64_t>(0, sample_count, 1 << 10),
-      [&](const tbb::blocked_range<std::uint64_t>& r) {
-        WalkTally tally;
-        core::for_each_segment(output, r.begin(), r.end(), [&](const core::SegmentRun& run) {
-          CandidateBatch batch;
-          auto draw = [&](std::uint64_t first, Sample(&out)[kLanes]) {
-            std::uint32_t accepted = 0;
-            draw_candidates(0, run.segment, first, key, batch);
-            for (int l = 0; l < kLanes; ++l) {
-              const std::uint32_t tri = core::pick_by_area(area_cdf, area_guide, batch.pick[l]);
-              const float d = core::texel_triangle_density(triangles[tri], maps, batch.b1[l], batch.b2[l]);
-              accepted |= std::uint32_t(batch.accept[l] * global_max_density < d) << l;
-              out[l] = {tri, batch.b1[l], batch.b2[l]};
-            }
-            return accepted;
-          };
-          walk_segment(run, max_tries, samples.data() + run.first, draw, tally);
-        });
-        candidates.fetch_add(tally.candidates, std::memory_order_relaxed);
-        exhausted.fetch_add(tally.exhausted, std::memory_order_relaxed);
-      });
-  return {candidates.load(), exhausted.load()};
+  return cdf_rejection_sample(area_cdf, area_guide, sample_count, key, max_tries, samples,
+                              [&](std::uint32_t tri, float b1, float b2, float accept, Sample& out) {
+                                out = {tri, b1, b2};
+                                return accept * global_max_density < core::texel_triangle_density(triangles[tri], maps, b1, b2);
+                              });
 }
 
 }  // namespace lightsampler::cpu

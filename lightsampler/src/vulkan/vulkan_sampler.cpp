@@ -101,8 +101,8 @@ class VulkanSampler final : public Sampler {
   }
 
   void generate(const FrameRequest& request, Frame& frame) override {
-    if (request.method == Method::naive)
-      throw std::invalid_argument("naive stratification runs on the CPU backend only");
+    if (request.method == Method::naive || request.method == Method::frs)
+      throw std::invalid_argument(std::string(to_string(request.method)) + " runs on the CPU backend only");
     core::begin_frame(request, frame);
     const auto start = std::chrono::steady_clock::now();
     run_frame(request, frame);
