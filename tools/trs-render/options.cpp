@@ -70,8 +70,8 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   app.add_option("--threads", r.threads, "worker threads; 0: all hardware threads")
       ->capture_default_str();
   app.add_option("--backend", backend,
-                 "light sampler (trs's point lights, every strategy's light integrals); auto: Vulkan "
-                 "on a GPU, else the native CPU backend")
+                 "light sampler (the point lights of trs and ris, every strategy's light "
+                 "integrals); auto: Vulkan on a GPU, else the native CPU backend")
       ->check(CLI::IsMember(names(kBackends)))
       ->capture_default_str();
   // Refined by default: the same lights for a fraction of the sampler's work (docs/benchmarks.md).
