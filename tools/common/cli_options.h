@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lightsampler/backend.h"
+#include "lightsampler/sampler.h"
 
 namespace trs {
 
@@ -25,6 +26,18 @@ inline const std::map<std::string, lightsampler::Backend> kBackends = {
     {"cpu", lightsampler::Backend::cpu},
     {"auto", lightsampler::Backend::automatic},
     {"vulkan", lightsampler::Backend::vulkan}};
+
+inline const std::map<std::string, lightsampler::Method> kMethods = {
+    {"trs", lightsampler::Method::trs},
+    {"rs", lightsampler::Method::rejection},
+    {"naive", lightsampler::Method::naive},
+    {"frs", lightsampler::Method::frs}};
+
+inline const std::map<std::string, lightsampler::Counting> kCountings = {
+    {"auto", lightsampler::Counting::automatic},
+    {"raster", lightsampler::Counting::raster},
+    {"compute", lightsampler::Counting::compute},
+    {"per-triangle", lightsampler::Counting::per_triangle}};
 
 /// Finite and non-negative; NaN fails every comparison, so it is rejected too.
 inline const CLI::Validator kFiniteNonNegative(

@@ -101,18 +101,6 @@ void print_backends(const ExperimentSettings& settings) {
   }
 }
 
-const std::map<std::string, lightsampler::Counting> kCountings = {
-    {"auto", lightsampler::Counting::automatic},
-    {"raster", lightsampler::Counting::raster},
-    {"compute", lightsampler::Counting::compute},
-    {"per-triangle", lightsampler::Counting::per_triangle}};
-
-const std::map<std::string, lightsampler::Method> kMethods = {
-    {"trs", lightsampler::Method::trs},
-    {"rs", lightsampler::Method::rejection},
-    {"naive", lightsampler::Method::naive},
-    {"frs", lightsampler::Method::frs}};
-
 /// Backends x methods, and for Vulkan TRS each counting path.
 std::vector<Variant> make_variants(const CommandLine& cl) {
   std::vector<Variant> variants;
@@ -120,7 +108,7 @@ std::vector<Variant> make_variants(const CommandLine& cl) {
     const bool vulkan = backend_name == "vulkan";
     const auto backend = vulkan ? lightsampler::Backend::vulkan : lightsampler::Backend::cpu;
     for (const auto& method_name : cl.methods) {
-      const auto method = kMethods.at(method_name);
+      const auto method = trs::kMethods.at(method_name);
       const bool cpu_only = method == lightsampler::Method::naive || method == lightsampler::Method::frs;
       if (vulkan && cpu_only) continue;
       if (!vulkan || method != lightsampler::Method::trs) {
@@ -128,7 +116,7 @@ std::vector<Variant> make_variants(const CommandLine& cl) {
         continue;
       }
       for (const auto& counting : cl.countings)
-        variants.push_back({backend, method, kCountings.at(counting)});
+        variants.push_back({backend, method, trs::kCountings.at(counting)});
     }
   }
   return variants;
@@ -189,7 +177,7 @@ int main(int argc, char** argv) {
                  "naive (naive triangle stratification), frs (fast rejection sampling; naive and "
                  "frs on the CPU backend only)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"trs", "rs", "naive", "frs"}))
+      ->check(CLI::IsMember(trs::names(trs::kMethods)))
       ->capture_default_str();
   app.add_option("--backends", cl.backends, "Backends: cpu, vulkan (side by side)")
       ->delimiter(',')
@@ -199,7 +187,7 @@ int main(int argc, char** argv) {
                  "Counting paths of the Vulkan backend: auto (per-triangle for small triangles, "
                  "compute for large ones), raster, compute, per-triangle (the paper's naive ablation)")
       ->delimiter(',')
-      ->check(CLI::IsMember(trs::names(kCountings)))
+      ->check(CLI::IsMember(trs::names(trs::kCountings)))
       ->capture_default_str();
   trs::add_refine_option(app, cl.settings.refinement);
   app.add_option("--device", cl.settings.vulkan_device,

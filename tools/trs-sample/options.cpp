@@ -11,16 +11,6 @@
 namespace trs {
 namespace {
 
-const std::map<std::string, lightsampler::Method> kMethods = {
-    {"trs", lightsampler::Method::trs},
-    {"rs", lightsampler::Method::rejection},
-    {"naive", lightsampler::Method::naive},
-    {"frs", lightsampler::Method::frs}};
-const std::map<std::string, lightsampler::Counting> kCountings = {
-    {"auto", lightsampler::Counting::automatic},
-    {"raster", lightsampler::Counting::raster},
-    {"compute", lightsampler::Counting::compute},
-    {"per-triangle", lightsampler::Counting::per_triangle}};
 const std::map<std::string, lightsampler::ScanOrder> kScans = {
     {"auto", lightsampler::ScanOrder::automatic},
     {"unordered", lightsampler::ScanOrder::unordered},

@@ -160,11 +160,16 @@ class CpuSampler final : public Sampler {
     frame.passes.push_back({Pass::realization, pass.lap_ms()});
   }
 
-  void generate_rejection(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
+  /// Samplers over the whole mesh have no per-triangle counts, bounds or CDF.
+  static void clear_triangle_outputs(Frame& frame) {
     for (auto* b : {&frame.counts, &frame.cdf}) b->resize(0);
     frame.inverse_permutation.resize(0);
     frame.expected_counts.resize(0);
     frame.max_density.resize(0);
+  }
+
+  void generate_rejection(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
+    clear_triangle_outputs(frame);
     double target;
     if (request.target_count) {
       target = *request.target_count;
@@ -192,10 +197,7 @@ class CpuSampler final : public Sampler {
 
   /// FRS: the table is built once, and again after update_map; a frame draws from it.
   void generate_frs(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
-    for (auto* b : {&frame.counts, &frame.cdf}) b->resize(0);
-    frame.inverse_permutation.resize(0);
-    frame.expected_counts.resize(0);
-    frame.max_density.resize(0);
+    clear_triangle_outputs(frame);
     if (!frs_) {
       frs_ = cpu::frs_build(scene_.triangles(), scene_.texel_triangles(), scene_.maps());
       frame.passes.push_back({Pass::distribution, pass.lap_ms()});
