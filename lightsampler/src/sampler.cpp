@@ -61,6 +61,16 @@ const char* to_string(ScanOrder scan) {
     case ScanOrder::automatic: return "auto";
     case ScanOrder::unordered: return "unordered";
     case ScanOrder::ordered: return "ordered";
+    case ScanOrder::lookback: return "lookback";
+  }
+  return "?";
+}
+
+const char* to_string(Overlap overlap) {
+  switch (overlap) {
+    case Overlap::closed_form: return "closed-form";
+    case Overlap::clipping: return "clipping";
+    case Overlap::sdf: return "sdf";
   }
   return "?";
 }

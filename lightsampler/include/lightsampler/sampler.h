@@ -27,7 +27,16 @@ enum class Method { trs, rejection, naive, frs };
 /// (one packed 64-bit atomic); `ordered` is a classic prefix sum. `automatic` takes the faster
 /// of the two for the backend: ordered on the CPU (measured faster there, docs/benchmarks.md),
 /// unordered on the GPU unless the triangle count and the total do not fit one 64-bit word.
-enum class ScanOrder { automatic, unordered, ordered };
+/// `lookback` is a single-pass decoupled look-back scan (Merrill and Garland 2016), ordered like
+/// `ordered`; the Vulkan backend only, never chosen by `automatic` (an experiment, Figure 13).
+enum class ScanOrder { automatic, unordered, ordered, lookback };
+
+/// How the counting pass measures a triangle's overlap with a texel (the paper's Figure 11).
+/// `closed_form` is Eq. 5 (the sampler as designed); `clipping` clips the triangle to the texel
+/// with a polygon clipper (exact, slower); `sdf` is Eq. 6, an approximation from the triangle's
+/// signed distance at the texel's centre: cheaper but not exact, so its frames are biased
+/// (Figure 12). For experiments; TRS only.
+enum class Overlap { closed_form, clipping, sdf };
 
 /// The backend that runs a sampler; `automatic` is a request only (backend.h).
 enum class Backend { automatic, cpu, vulkan };
@@ -48,6 +57,13 @@ struct VulkanFrameOptions {
   /// Copy the outputs into the Frame. False keeps them on the device (timing the sampler alone,
   /// or a consumer that reads the device buffers); the Frame's totals and times are still filled.
   bool read_back = true;
+  /// Ablations of the paper's Figure 14, for experiments; the defaults are the sampler as
+  /// designed. False: every invocation of the counting passes issues its own atomics instead of
+  /// one per subgroup.
+  bool subgroup_reduction = true;
+  /// True: realization finds the triangle of a slot through an inverse CDF (a guide table over
+  /// the counts' CDF) before its binary search.
+  bool inverse_cdf = false;
 };
 
 struct FrameRequest {
@@ -56,6 +72,8 @@ struct FrameRequest {
   std::optional<double> target_count;
   Method method = Method::trs;
   ScanOrder scan = ScanOrder::automatic;
+  /// Changing it between frames counts again, as a replaced map does.
+  Overlap overlap = Overlap::closed_form;
   /// False: stop after the counts and the CDF (no samples), e.g. to size buffers.
   bool realize = true;
   VulkanFrameOptions vulkan;
@@ -145,6 +163,7 @@ std::unique_ptr<Sampler> make_cpu_sampler(const MeshView& mesh,
 
 const char* to_string(Method method);
 const char* to_string(ScanOrder scan);
+const char* to_string(Overlap overlap);
 const char* to_string(Counting counting);
 const char* to_string(Backend backend);
 const char* to_string(Pass pass);

@@ -76,6 +76,11 @@ class CpuSampler final : public Sampler {
   }
 
   void generate(const FrameRequest& request, Frame& frame) override {
+    if (request.scan == ScanOrder::lookback)
+      throw std::invalid_argument("the lookback scan runs on the Vulkan backend only");
+    if (request.overlap != Overlap::closed_form)
+      throw std::invalid_argument(std::string("the ") + to_string(request.overlap) +
+                                  " overlap is not available on the CPU backend yet");
     core::begin_frame(request, frame);
     Stopwatch total, pass;
     arena_.execute([&] {

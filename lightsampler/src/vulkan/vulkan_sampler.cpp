@@ -103,6 +103,13 @@ class VulkanSampler final : public Sampler {
   void generate(const FrameRequest& request, Frame& frame) override {
     if (request.method == Method::naive || request.method == Method::frs)
       throw std::invalid_argument(std::string(to_string(request.method)) + " runs on the CPU backend only");
+    if (request.scan == ScanOrder::lookback)
+      throw std::invalid_argument("the lookback scan is not available on the Vulkan backend yet");
+    if (request.overlap != Overlap::closed_form)
+      throw std::invalid_argument(std::string("the ") + to_string(request.overlap) +
+                                  " overlap is not available on the Vulkan backend yet");
+    if (!request.vulkan.subgroup_reduction || request.vulkan.inverse_cdf)
+      throw std::invalid_argument("the Figure 14 ablations are not available on the Vulkan backend yet");
     core::begin_frame(request, frame);
     const auto start = std::chrono::steady_clock::now();
     run_frame(request, frame);
