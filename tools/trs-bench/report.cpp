@@ -50,7 +50,8 @@ const std::vector<Column> kColumns = {
     {"mesh", -6},    {"tris", 8},     {"map", -6},     {"engine", -10}, {"method", -6},
     {"scan", -9},    {"target", 6},   {"samples", 10}, {"accept", 7},
     {"count ms", 9}, {"round ms", 9}, {"scan ms", 9},  {"distr ms", 9},
-    {"real ms", 9},  {"total ms", 9}, {"Msmp/s", 8},   {"runs", 4},     {"x floor", 7}};
+    {"real ms", 9},  {"total ms", 9}, {"Msmp/s", 8},   {"runs", 4},     {"x floor", 7},
+    {"variant", 0}};
 
 /// One table line: cells padded to their column (negative width: left-aligned); cells past the
 /// end of `cells` are left out, so a skipped case can end with a free-text note.
@@ -82,6 +83,8 @@ std::vector<std::string> table_cells(const CaseResult& r) {
   cells.push_back(m.realized() ? format("%.3g", m.samples_per_s() * 1e-6) : "-");
   cells.push_back(std::to_string(m.runs));
   cells.push_back(r.floor_ms ? format("%.3g", m.total_ms / *r.floor_ms) : "-");
+  // The ablation, or the overlap formula where it is what the rows compare.
+  cells.push_back(!r.variant.empty() ? r.variant : r.experiment == "overlap" ? r.overlap : "");
   return cells;
 }
 
@@ -110,7 +113,7 @@ std::string csv_text(const std::vector<CaseResult>& results) {
       "acceptance,exhausted";
   for (const auto& name : passes) text += "," + name + "_ms";
   text += ",total_ms,wall_ms,samples_per_s,threads,backend,engine,device,estimate_ms,refine,floor_ms,floor_multiple,"
-          "setup_ms,setup_bytes\n";
+          "setup_ms,setup_bytes,overlap,variant\n";
   for (const auto& r : results) {
     text += r.experiment + "," + r.mesh + "," + std::to_string(r.triangles) + "," + r.map + "," +
             std::to_string(r.map_size) + "," + r.method + "," + r.scan + "," +
@@ -134,9 +137,10 @@ std::string csv_text(const std::vector<CaseResult>& results) {
     text += (r.measured ? "" : format("%.6g", r.estimate_ms)) + format(",%g,", r.refine);
     text += r.floor_ms ? format("%.6g,", *r.floor_ms) : ",";
     text += r.floor_ms && r.measured ? format("%.6g,", r.measured->total_ms / *r.floor_ms) : ",";
-    text += r.measured && r.measured->setup_bytes ? format("%.6g,%llu\n", r.measured->setup_ms,
+    text += r.measured && r.measured->setup_bytes ? format("%.6g,%llu,", r.measured->setup_ms,
                                                            static_cast<unsigned long long>(r.measured->setup_bytes))
-                                                  : ",\n";
+                                                  : ",,";
+    text += csv_quote(r.overlap) + ',' + csv_quote(r.variant) + '\n';
   }
   return text;
 }
