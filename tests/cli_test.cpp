@@ -238,6 +238,21 @@ TEST_F(CliTest, NaiveAndFastRejectionSamplingOnTheCpuAndRefusedOnVulkan) {
   }
 }
 
+TEST_F(CliTest, OverlapFormulasAndTheLookbackScanOnTheCpu) {
+  const fs::path mesh = write_quad_gltf("quad.gltf");
+  const fs::path map = write_top_row_map("map.exr", 400.0f);
+  for (const std::string overlap : {"closed-form", "clipping", "sdf"}) {
+    const RunResult result = run({mesh, map, "--overlap", overlap, "--backend", "cpu", "--count", "1000",
+                                  "--stats", file("s.json")});
+    ASSERT_EQ(result.status, 0) << result.err;
+    EXPECT_EQ(read_json(file("s.json"))["overlap"], overlap);
+  }
+  EXPECT_EQ(run({mesh, map, "--overlap", "exact"}).status, 2);
+  const RunResult lookback = run({mesh, map, "--scan", "lookback", "--backend", "cpu", "--count", "1000"});
+  EXPECT_EQ(lookback.status, 1);
+  EXPECT_NE(lookback.err.find("Vulkan backend only"), std::string::npos) << lookback.err;
+}
+
 // Density only in the top image row. OBJ puts v = 0 at the image's bottom, so the samples are at
 // the quad's high-v end (v_obj near 1); glTF puts v = 0 at the top, so they are at low v.
 TEST_F(CliTest, ObjAndGltfUvConventions) {
