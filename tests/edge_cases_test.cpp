@@ -185,6 +185,12 @@ TEST(EdgeCases, BadMeshesAreRejectedWithWhatAndWhere) {
   nan_uv.uvs[5] = std::numeric_limits<float>::quiet_NaN();
   EXPECT_NE(error_of(nan_uv, {}).find("uv of vertex 2 is not finite"), std::string::npos);
 
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    Mesh bad_position = trs_test::quad(1, 1, 0, 0, 1, 1);
+    bad_position.positions[10] = bad;
+    EXPECT_NE(error_of(bad_position, {}).find("position of vertex 3 is not finite"), std::string::npos);
+  }
+
   Mesh short_uvs = trs_test::quad(1, 1, 0, 0, 1, 1);
   short_uvs.uvs.resize(6);
   EXPECT_NE(error_of(short_uvs, {}).find("4 positions but 3 uvs"), std::string::npos);
