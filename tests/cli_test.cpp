@@ -448,6 +448,15 @@ TEST_F(CliTest, BadDensityMaps) {
   expect_failure_naming({mesh, not_an_image}, not_an_image);
 }
 
+// A header may claim any size: a map larger than 16384 x 16384 is refused before its pixels are
+// allocated (a PFM header of 100000 x 100000 with no pixels after it).
+TEST_F(CliTest, ImageHeadersClaimingHugeSizesAreRefused) {
+  const fs::path mesh = write_text("quad.obj", kQuadObj);
+  const fs::path huge = write_text("huge.pfm", "Pf\n100000 100000\n-1.0\n");
+  expect_failure_naming({mesh, huge}, huge);
+  EXPECT_NE(run({mesh, huge}).err.find("100000 x 100000 texels, more than the 16384 x 16384"), std::string::npos);
+}
+
 TEST_F(CliTest, FailedRunLeavesExistingOutputsUntouched) {
   const fs::path mesh = write_text("quad.obj", kQuadObj);
   std::vector<float> texels(16, 1.0f);

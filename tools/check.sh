@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds everything and runs the whole test suite (ctest); then builds
-# the library without its Vulkan backend and runs the tests of that configuration.
+# the library without its Vulkan backend and runs the tests of that configuration; then fuzzes
+# the parsers of user files for a fixed time each.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup-debian.sh
@@ -13,3 +14,9 @@ cmake -S . -B build-cpu-only -G Ninja -DCMAKE_BUILD_TYPE=Release -DLIGHTSAMPLER_
   -DLIGHTSAMPLER_BUILD_TOOLS=OFF
 cmake --build build-cpu-only
 ctest --test-dir build-cpu-only --output-on-failure --timeout 600 -j "$(nproc)"
+# The parsers of user files under libFuzzer, AddressSanitizer and UndefinedBehaviorSanitizer
+# (Clang), each for a fixed time from its corpus (fuzz/README.md).
+cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+  -DTRS_FUZZ=ON -DLIGHTSAMPLER_VULKAN=OFF -DLIGHTSAMPLER_BUILD_TESTS=OFF
+cmake --build build-fuzz --target fuzz_obj fuzz_gltf fuzz_glb fuzz_settings fuzz_density
+bash tools/fuzz.sh 30

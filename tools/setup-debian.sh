@@ -20,6 +20,8 @@ packages=(
   python3-numpy python3-matplotlib python3-openimageio
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # fuzzing (libFuzzer and the sanitizer runtimes of Clang)
+  clang libclang-rt-14-dev
 )
 
 missing=()

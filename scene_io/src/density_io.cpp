@@ -93,6 +93,7 @@ DensityMap load_density_map(const std::filesystem::path& file, MapEncoding encod
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
     throw FileError(file, "image has no pixels");
   }
+  check_image_size(file, spec.width, spec.height);
 
   DensityMap map;
   map.file = file;

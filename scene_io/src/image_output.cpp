@@ -51,6 +51,7 @@ Image read_rgb(OIIO::ImageInput* input, const std::filesystem::path& file,
   const OIIO::ImageSpec& spec = input->spec();
   if (spec.deep) fail("deep images are not supported");
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) fail("image has no pixels");
+  check_image_size(file, spec.width, spec.height);
   using Base = OIIO::TypeDesc::BASETYPE;
   const auto base = Base(spec.format.basetype);
 

@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <string>
 #include <system_error>
 
 #include "scene_io/file_error.h"
@@ -20,6 +21,12 @@ void check_input_file(const std::filesystem::path& file) {
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0) throw FileError(file, std::string("cannot open: ") + std::strerror(errno));
   ::close(fd);
+}
+
+void check_image_size(const std::filesystem::path& file, int width, int height) {
+  if (std::uint64_t(width) * std::uint64_t(height) <= kMaxImageTexels) return;
+  throw FileError(file, "image is " + std::to_string(width) + " x " + std::to_string(height) +
+                            " texels, more than the 16384 x 16384 an input image may have");
 }
 
 }  // namespace trs
