@@ -59,6 +59,8 @@ struct Capabilities {
   bool raster;                      ///< create_raster works (graphics queue, dynamic rendering,
                                     ///< fragmentStoresAndAtomics)
   bool geometry_shader;             ///< raster pipelines may have a geometry stage
+  bool vulkan_memory_model;         ///< vulkanMemoryModel and its device scope enabled (the
+                                    ///< lookback scan needs them)
 };
 
 /// A device-local buffer with a device address; optionally host-visible (mapped).
