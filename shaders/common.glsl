@@ -36,6 +36,11 @@
 
 #include "shared.h"
 
+// The paper's "No Subgroup Reduction" ablation (Figure 14), specialized by the host: false makes
+// every invocation of the counting passes and of the unordered scan issue its own atomics
+// instead of one per subgroup (or workgroup).
+layout(constant_id = 0) const bool kSubgroupReduction = true;
+
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer Floats { float v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer Uints { uint v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 8) buffer Uint64s { uint64_t v[]; };

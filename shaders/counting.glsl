@@ -28,13 +28,13 @@ TriangleCells triangle_cells(TexelTriangle t) {
 }
 
 // Adds one cell's density * overlap to triangle `tri`. Lanes of a subgroup that all work on one
-// triangle reduce first and issue one atomic per subgroup (paper, Section 5); otherwise each
-// lane issues its own. `writer` is false for fragment helper invocations, whose stores are
-// discarded: they add nothing and never carry a subgroup's atomic.
+// triangle reduce first and issue one atomic per subgroup (paper, Section 5); otherwise, or
+// without kSubgroupReduction, each lane issues its own. `writer` is false for fragment helper
+// invocations, whose stores are discarded: they add nothing and never carry a subgroup's atomic.
 void accumulate(uint64_t expected, uint64_t max_density, uint tri, float contribution, float density,
                 bool writer) {
   if (!writer) contribution = density = 0.0;
-  if (subgroupAllEqual(tri)) {
+  if (kSubgroupReduction && subgroupAllEqual(tri)) {
     float sum = subgroupAdd(contribution);
     float bound = subgroupMax(density);
     // The lowest writer adds for the subgroup; with no writer the ballot is empty and its

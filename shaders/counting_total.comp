@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// N-bar: the sum of the per-triangle expected counts (float atomics, order unspecified).
+// N-bar: the sum of the per-triangle expected counts (float atomics, order unspecified), one
+// atomic per workgroup, or per invocation without kSubgroupReduction.
 #include "workgroup.glsl"
 #include "grid.glsl"
 
@@ -11,6 +12,7 @@ void main() {
   float sum = 0.0;
   for (uint64_t i = thread_index(); i < uint64_t(p.triangle_count); i += thread_count())
     sum += Floats(p.expected).v[uint(i)];
-  sum = workgroup_add(sum);
-  if (gl_LocalInvocationIndex == 0u && sum > 0.0) atomicAdd(Totals(p.totals).t.expected_total, sum);
+  if (kSubgroupReduction) sum = workgroup_add(sum);  // a uniform condition: its barriers are reached
+  if ((!kSubgroupReduction || gl_LocalInvocationIndex == 0u) && sum > 0.0)
+    atomicAdd(Totals(p.totals).t.expected_total, sum);
 }

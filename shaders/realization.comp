@@ -6,6 +6,7 @@
 // spread over many. Candidates from Heitz's map, accepted against D_T^max; the same samples as
 // the CPU backend's.
 #include "workgroup.glsl"
+#include "inverse_cdf.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
 layout(push_constant) uniform Push { RealizationPush p; };
@@ -28,14 +29,12 @@ bool draw_candidate(uint64_t segment, uint64_t candidate, out Sample drawn) {
 
 uint64_t cdf_at(uint position) { return uint64_at(p.cdf, position).v[0]; }
 
-// The first processing index whose inclusive CDF exceeds sample_index.
+// The first processing index whose inclusive CDF exceeds sample_index, searched within the
+// guide table's bounds when the frame has one.
 uint processing_index(uint64_t sample_index) {
-  uint lo = 0u, hi = p.triangle_count - 1u;
-  while (lo < hi) {
-    uint mid = lo + (hi - lo) / 2u;
-    if (cdf_at(mid) > sample_index) hi = mid; else lo = mid + 1u;
-  }
-  return lo;
+  if (p.guide == 0ul) return first_above(p.cdf, sample_index, 0u, p.triangle_count - 1u);
+  uint b = uint(sample_index / guide_bucket(Totals(p.totals).t.sample_count, p.triangle_count));
+  return first_above(p.cdf, sample_index, Uints(p.guide).v[b], Uints(p.guide).v[b + 1u]);
 }
 
 void main() {

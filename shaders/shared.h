@@ -108,13 +108,19 @@ struct RoundingPush {
 struct ScanPush {
   uint64_t source;    // uint64[n]
   uint64_t result;    // uint64[n]: inclusive scan (ordered) or the CDF (unordered)
-  uint64_t block_sums;
+  uint64_t block_sums;  // ordered: the blocks' sums; lookback: a tile counter, then tile states
   uint64_t inverse;   // uint[n] (unordered scan)
   uint64_t totals;
   uint64_t count;     // n
   uint sum_bits;      // unordered: bits of the packed word holding the partial sum
-  uint pad0;
+  uint polls;         // lookback: reads of a predecessor's state before reducing its tile itself
 };
+
+// The lookback scan's tiles: kLookbackItems consecutive elements per invocation.
+LS_CONST uint kLookbackItems = 4;
+LS_CONST uint kLookbackTile = kWorkgroupSize * kLookbackItems;
+// Reads of a predecessor tile's state before the waiting workgroup reduces that tile itself.
+LS_CONST uint kLookbackPolls = 64;
 
 struct RealizationPush {
   uint64_t triangles;
@@ -125,6 +131,7 @@ struct RealizationPush {
   uint64_t inverse;
   uint64_t samples;
   uint64_t totals;
+  uint64_t guide;     // uint[T + 1]: the inverse CDF (inverse_cdf.glsl); 0: none, a plain search
   uint key0, key1;
   uint triangle_count;
   uint max_tries;

@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -16,6 +17,7 @@
 #include "distribution_check.h"
 #include "lightsampler/vulkan.h"
 #include "vulkan/context.h"
+#include "vulkan/layouts.h"
 
 using namespace lightsampler;
 using trs_test::Map;
@@ -450,6 +452,107 @@ TEST_F(VulkanSampler, OrderedScanIsThePrefixSum) {
     sum += f.counts[t];
     ASSERT_EQ(f.cdf[t], sum) << "triangle " << t;
     ASSERT_EQ(f.inverse_permutation[t], t);
+  }
+}
+
+/// Frames `a` and `b`, each from a sampler of its own, both alive until both frames are made: no
+/// device memory (sampler buffers, or memory one of them freed) that `a` wrote can pass for
+/// `b`'s outputs.
+std::pair<Frame, Frame> separate_frames(const Mesh& mesh, const Map& map, const FrameRequest& a,
+                                        const FrameRequest& b) {
+  auto first = make_vulkan_sampler(mesh.view(), views({map}), {.validation = true});
+  auto second = make_vulkan_sampler(mesh.view(), views({map}), {.validation = true});
+  return {generate(*first, a), generate(*second, b)};
+}
+
+/// Per-triangle counting sums each N-bar_T in one invocation, and frames without a target round
+/// each N-bar_T on its own: such frames of two samplers have the same N_T, and differ only in
+/// what the request changes after counting.
+constexpr Counting kExactCounting = Counting::per_triangle;
+
+void expect_same_frame(const Frame& want, const Frame& got) {
+  const auto values = [](const auto& buffer) { return std::vector(buffer.begin(), buffer.end()); };
+  EXPECT_EQ(values(got.counts), values(want.counts));
+  EXPECT_EQ(values(got.cdf), values(want.cdf));
+  EXPECT_EQ(values(got.inverse_permutation), values(want.inverse_permutation));
+  ASSERT_EQ(got.samples.size(), want.samples.size());
+  expect_same_samples_in_order(want, got);
+}
+
+TEST_F(VulkanSampler, LookbackScanIsTheOrderedScanBitForBit) {
+  // One triangle, a tile less one, several tiles; small triangles on a sparse map leave many
+  // counts zero.
+  for (int triangles : {1, int(gpu::kLookbackTile) - 1, 9 * int(gpu::kLookbackTile) + 17}) {
+    SCOPED_TRACE(triangles);
+    const Mesh mesh = scattered_triangles(triangles, 0.0f, 1.0f, 0.02f, std::uint64_t(triangles));
+    Map map = trs_test::random_map(64, 64, 0.7, 21);
+    map.scale = 40000.0f / float(triangles);
+    const auto [ordered, got] =
+        separate_frames(mesh, map, {.seed = 8, .scan = ScanOrder::ordered, .vulkan = {.counting = kExactCounting}},
+                        {.seed = 8, .scan = ScanOrder::lookback, .vulkan = {.counting = kExactCounting}});
+    EXPECT_EQ(got.scan_used, ScanOrder::lookback);
+    if (triangles > 1) {
+      ASSERT_GT(ordered.sample_count, 1000u);
+      EXPECT_GT(std::count(ordered.counts.begin(), ordered.counts.end(), 0u), 0) << "some counts are zero";
+    }
+    expect_same_frame(ordered, got);
+  }
+}
+
+TEST_F(VulkanSampler, LookbackScanRefusesTotalsOf2To62) {
+  auto sampler = gpu(trs_test::quad(1, 1, 0, 0, 1, 1), {Map{{1.0f}, 1, 1}});
+  EXPECT_THROW(generate(*sampler, {.target_count = 0x1p62, .scan = ScanOrder::lookback, .realize = false}),
+               std::overflow_error);
+}
+
+TEST_F(VulkanSampler, InverseCdfDrawsTheSameSamples) {
+  const Mesh mesh = scattered_triangles(3000, 0.0f, 1.0f, 0.02f, 23);
+  Map map = trs_test::random_map(64, 64, 0.5, 24);
+  map.scale = 60.0f;
+  for (ScanOrder scan : {ScanOrder::ordered, ScanOrder::lookback}) {
+    SCOPED_TRACE(to_string(scan));
+    const auto [plain, guided] =
+        separate_frames(mesh, map, {.seed = 9, .scan = scan, .vulkan = {.counting = kExactCounting}},
+                        {.seed = 9, .scan = scan, .vulkan = {.counting = kExactCounting, .inverse_cdf = true}});
+    ASSERT_GT(plain.sample_count, 10000u);
+    expect_same_frame(plain, guided);
+  }
+}
+
+TEST_F(VulkanSampler, WithoutSubgroupReductionTheCountsAndSamplesAgree) {
+  // Counting sums floats in another order: N-bar_T within the counting tolerance, the same
+  // samples where N_T agrees. The unordered scan reserves its slots lane by lane.
+  const Mesh mesh = trs_test::random_triangles(300, 0.0f, 1.0f, 25);
+  Map map = trs_test::random_map(32, 32, 0.3, 26);
+  map.scale = 200.0f;
+  for (Counting path : {Counting::raster, Counting::compute}) {
+    SCOPED_TRACE(to_string(path));
+    const FrameRequest request{.seed = 10, .scan = ScanOrder::unordered, .vulkan = {.counting = path}};
+    FrameRequest ablation = request;
+    ablation.vulkan.subgroup_reduction = false;
+    const auto [reduced, got] = separate_frames(mesh, map, request, ablation);
+    EXPECT_EQ(got.counting_used, path);
+    ASSERT_GT(reduced.sample_count, 10000u);
+    double largest = 0;
+    for (double e : reduced.expected_counts) largest = std::max(largest, e);
+    for (std::size_t t = 0; t < got.expected_counts.size(); ++t) {
+      const double want = reduced.expected_counts[t];
+      EXPECT_NEAR(got.expected_counts[t], want, 1e-4 * std::max(want, 1e-3 * largest)) << "triangle " << t;
+      EXPECT_EQ(got.max_density[t], reduced.max_density[t]) << "triangle " << t;
+    }
+    EXPECT_NEAR(got.expected_total, reduced.expected_total, 1e-4 * reduced.expected_total);
+    ASSERT_EQ(got.scan_used, ScanOrder::unordered);
+    std::vector<char> seen(got.counts.size(), 0);
+    std::uint64_t previous = 0;
+    for (std::size_t p = 0; p < got.cdf.size(); ++p) {
+      const std::uint32_t t = got.inverse_permutation[p];
+      ASSERT_FALSE(seen[t]) << "triangle " << t << " twice";
+      seen[t] = 1;
+      ASSERT_EQ(got.cdf[p] - previous, got.counts[t]) << "processing index " << p;
+      previous = got.cdf[p];
+    }
+    EXPECT_EQ(previous, got.sample_count);
+    EXPECT_GT(expect_same_samples_where_counts_agree(reduced, got), got.counts.size() * 9 / 10);
   }
 }
 

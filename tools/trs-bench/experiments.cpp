@@ -269,7 +269,9 @@ void run_scan_experiment(const Inputs& inputs, const ExperimentSettings& setting
       Samplers samplers(mesh, map, settings);
       for (Sampler* sampler : {samplers.cpu.get(), samplers.vulkan.get()}) {
         if (!sampler) continue;
-        for (ScanOrder scan : {ScanOrder::unordered, ScanOrder::ordered}) {
+        std::vector<ScanOrder> scans{ScanOrder::unordered, ScanOrder::ordered};
+        if (sampler->backend() == Backend::vulkan) scans.push_back(ScanOrder::lookback);  // GPU only
+        for (ScanOrder scan : scans) {
           FrameRequest request;
           request.target_count = settings.scan_target;
           request.scan = scan;

@@ -28,7 +28,10 @@ enum class Method { trs, rejection, naive, frs };
 /// of the two for the backend: ordered on the CPU (measured faster there, docs/benchmarks.md),
 /// unordered on the GPU unless the triangle count and the total do not fit one 64-bit word.
 /// `lookback` is a single-pass decoupled look-back scan (Merrill and Garland 2016), ordered like
-/// `ordered`; the Vulkan backend only, never chosen by `automatic` (an experiment, Figure 13).
+/// `ordered`, with the same outputs; the Vulkan backend only, never chosen by `automatic` (an
+/// experiment, Figure 13). It needs the device's vulkanMemoryModel and
+/// vulkanMemoryModelDeviceScope (std::invalid_argument otherwise), and totals below 2^62
+/// (std::overflow_error otherwise).
 enum class ScanOrder { automatic, unordered, ordered, lookback };
 
 /// How the counting pass measures a triangle's overlap with a texel (the paper's Figure 11).
@@ -58,11 +61,11 @@ struct VulkanFrameOptions {
   /// or a consumer that reads the device buffers); the Frame's totals and times are still filled.
   bool read_back = true;
   /// Ablations of the paper's Figure 14, for experiments; the defaults are the sampler as
-  /// designed. False: every invocation of the counting passes issues its own atomics instead of
-  /// one per subgroup.
+  /// designed. False: every invocation of the counting passes and of the unordered scan issues
+  /// its own atomics instead of one per subgroup; N-bar_T changes only by float summation order.
   bool subgroup_reduction = true;
   /// True: realization finds the triangle of a slot through an inverse CDF (a guide table over
-  /// the counts' CDF) before its binary search.
+  /// the counts' CDF, built after the scan) before its binary search; the same samples.
   bool inverse_cdf = false;
 };
 

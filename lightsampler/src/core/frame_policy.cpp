@@ -32,6 +32,9 @@ ScanOrder choose_scan(ScanOrder requested, ScanOrder preferred, std::uint64_t el
   if (requested == ScanOrder::unordered && !fits)
     throw std::overflow_error(std::to_string(elements) + " triangles and " + std::to_string(total) +
                               " samples do not fit one 64-bit packed counter; use the ordered scan");
+  if (requested == ScanOrder::lookback && total >= (std::uint64_t(1) << 62))
+    throw std::overflow_error(std::to_string(total) +
+                              " samples do not fit the lookback scan's 62-bit sums; use the ordered scan");
   if (requested != ScanOrder::automatic) return requested;
   return preferred == ScanOrder::unordered && fits ? ScanOrder::unordered : ScanOrder::ordered;
 }

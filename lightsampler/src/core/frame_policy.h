@@ -19,6 +19,7 @@ bool unordered_scan_fits(std::uint64_t elements, std::uint64_t total);
 /// The scan of a frame: the one requested, or `preferred` (the backend's faster one) when the
 /// request leaves it to the sampler. An unordered scan that cannot pack `elements` and `total`
 /// falls back to the ordered one when automatic, and throws std::overflow_error when requested.
+/// So does a lookback scan of a total of 2^62 or more (its states pack a 2-bit flag and the sum).
 ScanOrder choose_scan(ScanOrder requested, ScanOrder preferred, std::uint64_t elements, std::uint64_t total);
 
 /// Uniform double in [0, 1) with 53 random bits: P(u < f) = f for any double fraction f.

@@ -59,6 +59,8 @@ struct Capabilities {
   bool raster;                      ///< create_raster works (graphics queue, dynamic rendering,
                                     ///< fragmentStoresAndAtomics)
   bool geometry_shader;             ///< raster pipelines may have a geometry stage
+  bool vulkan_memory_model;         ///< vulkanMemoryModel and its device scope enabled (the
+                                    ///< lookback scan needs them)
 };
 
 /// A device-local buffer with a device address; optionally host-visible (mapped).
@@ -108,6 +110,7 @@ class ComputePipeline {
 struct RasterStages {
   std::span<const std::uint32_t> vertex, geometry, fragment;  ///< geometry may be empty
   bool conservative = false;
+  std::span<const std::uint32_t> specialization;  ///< of every stage, as for create_compute
 };
 class RasterPipeline {
  public:
@@ -201,8 +204,10 @@ class Context {
   void download(const Buffer& from, VkDeviceSize offset, void* data, VkDeviceSize bytes);
 
   /// push_size: bytes of push constants, a multiple of 4 within the device's limit (else
-  /// std::invalid_argument).
-  ComputePipeline create_compute(std::span<const std::uint32_t> spirv, std::uint32_t push_size);
+  /// std::invalid_argument). specialization[i]: the value of specialization constant i (32 bits;
+  /// a bool is 0 or 1); constants the shader does not declare are ignored.
+  ComputePipeline create_compute(std::span<const std::uint32_t> spirv, std::uint32_t push_size,
+                                 std::span<const std::uint32_t> specialization = {});
   /// Throws Unavailable naming what is missing when !capabilities().raster, or when a geometry
   /// stage or conservative rasterization is asked for and the device lacks it.
   RasterPipeline create_raster(const RasterStages& stages, std::uint32_t push_size);

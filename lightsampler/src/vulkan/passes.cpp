@@ -1,17 +1,20 @@
 #include "vulkan/passes.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "spirv/counting_cells_comp.h"
 #include "spirv/counting_setup_comp.h"
 #include "spirv/counting_triangles_comp.h"
 #include "spirv/realization_comp.h"
+#include "spirv/realization_guide_comp.h"
 #include "spirv/realization_plan_comp.h"
 #include "spirv/rejection_distribution_comp.h"
 #include "spirv/rejection_comp.h"
 #include "spirv/rounding_comp.h"
 #include "spirv/scan_add_comp.h"
 #include "spirv/scan_local_comp.h"
+#include "spirv/scan_lookback_comp.h"
 #include "spirv/scan_unordered_comp.h"
 #include "spirv/counting_total_comp.h"
 
@@ -21,15 +24,20 @@ Pipelines::Pipelines(Context& c)
     : counting_setup(c.create_compute(spirv::counting_setup_comp, sizeof(gpu::CountingPush))),
       counting_cells(c.create_compute(spirv::counting_cells_comp, sizeof(gpu::CountingPush))),
       counting_triangles(c.create_compute(spirv::counting_triangles_comp, sizeof(gpu::CountingPush))),
-      counting_total(c.create_compute(spirv::counting_total_comp, sizeof(gpu::CountingPush))),
       rounding(c.create_compute(spirv::rounding_comp, sizeof(gpu::RoundingPush))),
-      scan_unordered(c.create_compute(spirv::scan_unordered_comp, sizeof(gpu::ScanPush))),
       scan_local(c.create_compute(spirv::scan_local_comp, sizeof(gpu::ScanPush))),
       scan_add(c.create_compute(spirv::scan_add_comp, sizeof(gpu::ScanPush))),
+      realization_guide(c.create_compute(spirv::realization_guide_comp, sizeof(gpu::RealizationPush))),
       realization_plan(c.create_compute(spirv::realization_plan_comp, sizeof(gpu::PlanPush))),
       realization(c.create_compute(spirv::realization_comp, sizeof(gpu::RealizationPush))),
       rejection_distribution(c.create_compute(spirv::rejection_distribution_comp, sizeof(gpu::RejectionPush))),
       rejection(c.create_compute(spirv::rejection_comp, sizeof(gpu::RejectionPush))) {}
+
+ReducingPipelines::ReducingPipelines(Context& c, bool subgroup_reduction) {
+  const std::uint32_t constants[] = {subgroup_reduction};
+  counting_total = c.create_compute(spirv::counting_total_comp, sizeof(gpu::CountingPush), constants);
+  scan_unordered = c.create_compute(spirv::scan_unordered_comp, sizeof(gpu::ScanPush), constants);
+}
 
 std::uint32_t workgroups_for(std::uint64_t elements) {
   const std::uint64_t groups = (elements + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;
@@ -59,6 +67,23 @@ void OrderedScan::record(Commands& commands, const Pipelines& pipelines, VkDevic
   record(commands, pipelines, sums, scanned, blocks, level + 1);
   push.block_sums = scanned;
   commands.dispatch(pipelines.scan_add, &push, sizeof push, workgroups_for(n));
+  commands.barrier();
+}
+
+void LookbackScan::record(Commands& commands, VkDeviceAddress source, VkDeviceAddress result, std::uint64_t n,
+                          std::uint32_t polls) {
+  if (!context_.capabilities().vulkan_memory_model)
+    throw std::invalid_argument("the lookback scan needs vulkanMemoryModel and vulkanMemoryModelDeviceScope, which " +
+                                context_.device_name() + " lacks; use the ordered scan");
+  if (n == 0) return;
+  if (!pipeline_) pipeline_ = context_.create_compute(spirv::scan_lookback_comp, sizeof(gpu::ScanPush));
+  const std::uint64_t tiles = (n + gpu::kLookbackTile - 1) / gpu::kLookbackTile;
+  const VkDeviceSize bytes = (tiles + 1) * sizeof(std::uint64_t);
+  if (!states_ || states_.size() < bytes) states_ = context_.create_buffer(bytes);
+  commands.fill(states_, 0, bytes, 0);  // tile counter and states start at zero
+  commands.barrier();
+  const gpu::ScanPush push{source, result, states_.address(), 0, 0, n, 0, polls};
+  commands.dispatch(*pipeline_, &push, sizeof push, std::uint32_t(std::min<std::uint64_t>(tiles, gpu::kMaxWorkgroups)));
   commands.barrier();
 }
 

@@ -2,6 +2,7 @@
 // The compiled passes of shaders/, and helpers to record them.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "vulkan/context.h"
@@ -11,8 +12,15 @@ namespace lightsampler::vk {
 
 struct Pipelines {
   explicit Pipelines(Context& context);
-  ComputePipeline counting_setup, counting_cells, counting_triangles, counting_total, rounding, scan_unordered,
-      scan_local, scan_add, realization_plan, realization, rejection_distribution, rejection;
+  ComputePipeline counting_setup, counting_cells, counting_triangles, rounding, scan_local, scan_add,
+      realization_guide, realization_plan, realization, rejection_distribution, rejection;
+};
+
+/// The compute passes that reduce over subgroups before their atomics, specialized with or
+/// without that reduction (kSubgroupReduction, the paper's "No Subgroup Reduction" ablation).
+struct ReducingPipelines {
+  ReducingPipelines(Context& context, bool subgroup_reduction);
+  ComputePipeline counting_total, scan_unordered;
 };
 
 /// Workgroups for a grid-stride pass over `elements` (at least one, at most kMaxWorkgroups).
@@ -30,6 +38,23 @@ class OrderedScan {
   Buffer& scratch(std::vector<Buffer>& level_buffers, std::size_t level, std::uint64_t elements);
   Context& context_;
   std::vector<Buffer> block_sums_, scanned_sums_;
+};
+
+/// Records the single-pass ordered inclusive scan of n uint64 values (shaders/scan_lookback.comp),
+/// whose total must be below 2^62. `polls`: reads of a predecessor's state before a workgroup
+/// reduces that tile itself (0: it always does, which tests use). The pipeline is made on first
+/// use; throws std::invalid_argument on a device without vulkanMemoryModel (and its device
+/// scope, see Capabilities).
+class LookbackScan {
+ public:
+  explicit LookbackScan(Context& context) : context_(context) {}
+  void record(Commands& commands, VkDeviceAddress source, VkDeviceAddress result, std::uint64_t n,
+              std::uint32_t polls = gpu::kLookbackPolls);
+
+ private:
+  Context& context_;
+  std::optional<ComputePipeline> pipeline_;
+  Buffer states_;  ///< the tile counter, then one state per tile
 };
 
 }  // namespace lightsampler::vk

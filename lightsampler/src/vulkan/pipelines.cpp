@@ -50,11 +50,34 @@ VkPipelineLayout make_layout(VkDevice device, VkShaderStageFlags stages, std::ui
   return layout;
 }
 
-VkPipelineShaderStageCreateInfo stage_info(VkShaderStageFlagBits stage, const ShaderModule& module) {
+// Specialization constants 0, 1, ... of 32 bits each, as create_compute documents; the entries
+// must outlive the pipeline's creation.
+class Specialization {
+ public:
+  explicit Specialization(std::span<const std::uint32_t> values) {
+    for (std::uint32_t i = 0; i < values.size(); ++i)
+      entries_.push_back({.constantID = i, .offset = i * 4, .size = 4});
+    info_ = {.mapEntryCount = std::uint32_t(entries_.size()),
+             .pMapEntries = entries_.data(),
+             .dataSize = values.size_bytes(),
+             .pData = values.data()};
+  }
+  Specialization(const Specialization&) = delete;
+  Specialization& operator=(const Specialization&) = delete;
+  const VkSpecializationInfo* info() const { return entries_.empty() ? nullptr : &info_; }
+
+ private:
+  std::vector<VkSpecializationMapEntry> entries_;
+  VkSpecializationInfo info_{};
+};
+
+VkPipelineShaderStageCreateInfo stage_info(VkShaderStageFlagBits stage, const ShaderModule& module,
+                                           const Specialization& specialization) {
   return {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
           .stage = stage,
           .module = module.handle(),
-          .pName = "main"};
+          .pName = "main",
+          .pSpecializationInfo = specialization.info()};
 }
 
 void destroy(VkDevice device, VkPipeline pipeline, VkPipelineLayout layout) {
@@ -64,15 +87,17 @@ void destroy(VkDevice device, VkPipeline pipeline, VkPipelineLayout layout) {
 
 }  // namespace
 
-ComputePipeline Context::create_compute(std::span<const std::uint32_t> spirv, std::uint32_t push_size) {
+ComputePipeline Context::create_compute(std::span<const std::uint32_t> spirv, std::uint32_t push_size,
+                                        std::span<const std::uint32_t> specialization) {
   State& s = *state_;
   check_push_size(push_size, s.device.max_push_size);
   const ShaderModule module(s.device.handle, spirv);
+  const Specialization constants(specialization);
   ComputePipeline p;
   p.device_ = s.device.handle;
   p.layout_ = make_layout(p.device_, VK_SHADER_STAGE_COMPUTE_BIT, push_size);
   const VkComputePipelineCreateInfo info{.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
-                                         .stage = stage_info(VK_SHADER_STAGE_COMPUTE_BIT, module),
+                                         .stage = stage_info(VK_SHADER_STAGE_COMPUTE_BIT, module, constants),
                                          .layout = p.layout_};
   check(vkCreateComputePipelines(p.device_, VK_NULL_HANDLE, 1, &info, nullptr, &p.pipeline_),
         "vkCreateComputePipelines");
@@ -90,15 +115,18 @@ RasterPipeline Context::create_raster(const RasterStages& stages, std::uint32_t 
   check_push_size(push_size, s.device.max_push_size);
 
   const ShaderModule vertex(s.device.handle, stages.vertex);
-  std::vector<VkPipelineShaderStageCreateInfo> stage_infos{stage_info(VK_SHADER_STAGE_VERTEX_BIT, vertex)};
+  const Specialization constants(stages.specialization);
+  std::vector<VkPipelineShaderStageCreateInfo> stage_infos{stage_info(VK_SHADER_STAGE_VERTEX_BIT, vertex, constants)};
   VkShaderStageFlags stage_flags = VK_SHADER_STAGE_VERTEX_BIT;
   std::optional<ShaderModule> geometry, fragment;
   if (!stages.geometry.empty()) {
-    stage_infos.push_back(stage_info(VK_SHADER_STAGE_GEOMETRY_BIT, geometry.emplace(s.device.handle, stages.geometry)));
+    stage_infos.push_back(
+        stage_info(VK_SHADER_STAGE_GEOMETRY_BIT, geometry.emplace(s.device.handle, stages.geometry), constants));
     stage_flags |= VK_SHADER_STAGE_GEOMETRY_BIT;
   }
   if (!stages.fragment.empty()) {
-    stage_infos.push_back(stage_info(VK_SHADER_STAGE_FRAGMENT_BIT, fragment.emplace(s.device.handle, stages.fragment)));
+    stage_infos.push_back(
+        stage_info(VK_SHADER_STAGE_FRAGMENT_BIT, fragment.emplace(s.device.handle, stages.fragment), constants));
     stage_flags |= VK_SHADER_STAGE_FRAGMENT_BIT;
   }
 

@@ -39,6 +39,9 @@ Device::Device(const DeviceSurvey& d) : physical(d.handle) {
   raster_missing = d.raster_missing;
   max_push_size = d.properties.limits.maxPushConstantsSize;
   vkGetPhysicalDeviceMemoryProperties(physical, &memory);
+  // With the Vulkan memory model enabled, Device scope (which every other pass's atomics use)
+  // needs vulkanMemoryModelDeviceScope: the lookback scan gets the model only with both.
+  const bool memory_model = d.features12.vulkanMemoryModel && d.features12.vulkanMemoryModelDeviceScope;
   capabilities = {.subgroup_size = d.subgroup_size,
                   .conservative_rasterization = d.conservative_rasterization,
                   .timestamp_period_ns = d.properties.limits.timestampPeriod,
@@ -47,7 +50,8 @@ Device::Device(const DeviceSurvey& d) : physical(d.handle) {
                   .device_local_bytes = device_local_bytes(memory),
                   .sub_pixel_bits = d.properties.limits.subPixelPrecisionBits,
                   .raster = d.raster_missing.empty(),
-                  .geometry_shader = d.raster_missing.empty() && d.features.geometryShader};
+                  .geometry_shader = d.raster_missing.empty() && d.features.geometryShader,
+                  .vulkan_memory_model = memory_model};
   timestamp_mask = d.timestamp_bits >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << d.timestamp_bits) - 1;
 
   // Required features (checked by the survey), plus optional ones the passes use where present.
@@ -73,7 +77,9 @@ Device::Device(const DeviceSurvey& d) : physical(d.handle) {
       .shaderBufferInt64Atomics = VK_TRUE,
       .shaderSharedInt64Atomics = d.features12.shaderSharedInt64Atomics,
       .shaderSubgroupExtendedTypes = d.features12.shaderSubgroupExtendedTypes,
-      .bufferDeviceAddress = VK_TRUE};
+      .bufferDeviceAddress = VK_TRUE,
+      .vulkanMemoryModel = capabilities.vulkan_memory_model,
+      .vulkanMemoryModelDeviceScope = capabilities.vulkan_memory_model};
   VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &features12};
   features.features.shaderInt64 = VK_TRUE;
   features.features.shaderFloat64 = d.features.shaderFloat64;

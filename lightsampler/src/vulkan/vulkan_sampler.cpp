@@ -2,6 +2,7 @@
 // rejection sampling) and sized on the device.
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <chrono>
 #include <cmath>
@@ -49,9 +50,18 @@ std::uint32_t device_max_tries(const std::string& device, std::uint32_t requeste
   return requested;
 }
 
+/// How N-bar_T and D_T^max are counted: the path, and whether its atomics follow a subgroup
+/// reduction.
+struct CountingMode {
+  Counting path;
+  bool subgroup_reduction;
+  bool operator==(const CountingMode&) const = default;
+};
+
 /// Per-triangle and per-frame device buffers, grown on demand and kept between frames.
 struct FrameBuffers {
   Buffer expected, max_density, footprint, cell_cdf, counts, cdf, inverse, identity, totals, samples;
+  Buffer guide;            ///< uint[T + 1]: realization's inverse CDF (inverse_cdf.glsl)
   Buffer totals_readback;  ///< host-visible copy of `totals`: shader atomics stay in device memory
   Buffer dispatch_args;    ///< realization's indirect workgroup counts, written by the plan pass
   Buffer stale_maps;       ///< uint per map: 1 where a partial count counts the map's triangles
@@ -63,7 +73,9 @@ class VulkanSampler final : public Sampler {
       : context_(vk::Context::create({options.device, options.validation})),
         scene_(*context_, mesh, maps),
         pipelines_(*context_),
-        scan_(*context_) {
+        reducing_(*context_, true),
+        scan_(*context_),
+        lookback_(*context_) {
     const std::uint64_t t = std::max<std::uint64_t>(scene_.triangle_count(), 1);
     buffers_.expected = context_->create_buffer(t * sizeof(float));
     buffers_.max_density = context_->create_buffer(t * sizeof(std::uint32_t));
@@ -103,13 +115,9 @@ class VulkanSampler final : public Sampler {
   void generate(const FrameRequest& request, Frame& frame) override {
     if (request.method == Method::naive || request.method == Method::frs)
       throw std::invalid_argument(std::string(to_string(request.method)) + " runs on the CPU backend only");
-    if (request.scan == ScanOrder::lookback)
-      throw std::invalid_argument("the lookback scan is not available on the Vulkan backend yet");
     if (request.overlap != Overlap::closed_form)
       throw std::invalid_argument(std::string("the ") + to_string(request.overlap) +
                                   " overlap is not available on the Vulkan backend yet");
-    if (!request.vulkan.subgroup_reduction || request.vulkan.inverse_cdf)
-      throw std::invalid_argument("the Figure 14 ablations are not available on the Vulkan backend yet");
     core::begin_frame(request, frame);
     const auto start = std::chrono::steady_clock::now();
     run_frame(request, frame);
@@ -150,38 +158,47 @@ class VulkanSampler final : public Sampler {
             buffers_.totals.address(), 0, scene_.triangle_count(), small_cells};
   }
 
+  /// The passes reducing over subgroups before their atomics, or, for the ablation, not.
+  const vk::ReducingPipelines& reducing(bool subgroup_reduction) {
+    if (subgroup_reduction) return reducing_;
+    if (!unreduced_) unreduced_.emplace(*context_, false);
+    return *unreduced_;
+  }
+
   /// Counting (Algorithm 2, lines 1-8) and the total N-bar, recorded into `c`. N-bar_T and
   /// D_T^max stay in their buffers between frames: a frame counts the triangles of the maps
-  /// replaced by update_map since, or every triangle when it asks for another counting path
+  /// replaced by update_map since, or every triangle when it asks for another counting mode
   /// (or raster, which adds into its results); otherwise it only sums the total.
   void record_counting(Commands& c, const FrameRequest& request, Frame& frame) {
     const Counting path = request.vulkan.counting;
+    const CountingMode mode{path, request.vulkan.subgroup_reduction};
     if (path == Counting::cpu)
       throw std::invalid_argument("the Vulkan backend has no CPU counting path; ask for raster, compute or per-triangle");
     gpu::CountingPush push = count_push(path == Counting::automatic ? scene_.small_triangle_cells() : 0);
     const std::uint32_t groups = workgroups_for(scene_.triangle_count());
     const bool stale = std::find(stale_.begin(), stale_.end(), true) != stale_.end();
-    if (counted_ == path && stale && path != Counting::raster) {
+    if (counted_ == mode && stale && path != Counting::raster) {
       c.fill(buffers_.stale_maps, 0, buffers_.stale_maps.size(), 0);
       for (std::size_t m = 0; m < stale_.size(); ++m)
         if (stale_[m]) c.fill(buffers_.stale_maps, m * sizeof(std::uint32_t), sizeof(std::uint32_t), 1);
       c.barrier();
       push.stale_maps = buffers_.stale_maps.address();
     }
-    if (counted_ != path || stale) record_triangle_counts(c, path, push, frame);
-    c.dispatch(pipelines_.counting_total, &push, sizeof push, groups);
+    if (counted_ != mode || stale) record_triangle_counts(c, mode, push, frame);
+    c.dispatch(reducing(mode.subgroup_reduction).counting_total, &push, sizeof push, groups);
     c.barrier();
     c.timestamp(to_string(Pass::counting));
   }
 
-  /// N-bar_T and D_T^max by `path`, of every triangle or, with push.stale_maps, of the stale
+  /// N-bar_T and D_T^max by `mode`, of every triangle or, with push.stale_maps, of the stale
   /// maps' triangles; counted_ once the commands have run.
-  void record_triangle_counts(Commands& c, Counting path, const gpu::CountingPush& push, Frame& frame) {
+  void record_triangle_counts(Commands& c, CountingMode mode, const gpu::CountingPush& push, Frame& frame) {
+    const Counting path = mode.path;
     const std::uint32_t groups = workgroups_for(scene_.triangle_count());
     c.dispatch(pipelines_.counting_setup, &push, sizeof push, groups);
     c.barrier();
     if (path == Counting::raster) {
-      record_raster_counting(c);
+      record_raster_counting(c, mode.subgroup_reduction);
       frame.counting_used = Counting::raster;
     } else if (path == Counting::per_triangle) {
       c.dispatch(pipelines_.counting_triangles, &push, sizeof push, groups);
@@ -200,12 +217,12 @@ class VulkanSampler final : public Sampler {
       }
       frame.counting_used = path == Counting::automatic ? Counting::automatic : Counting::compute;
     }
-    counting_ = path;
+    counting_ = mode;
   }
 
   /// The paper's counting: every map's triangles rasterized in its texel space, one draw per
   /// viewport-sized tile of the lattice cells they touch.
-  void record_raster_counting(Commands& c) {
+  void record_raster_counting(Commands& c, bool subgroup_reduction) {
     // Tile corners and vertices reach the rasterizer as floats, exact only within 2^24 texels.
     constexpr std::int64_t kExactFloat = std::int64_t(1) << 24;
     for (const vk::LatticeBox& box : scene_.map_boxes())
@@ -215,7 +232,7 @@ class VulkanSampler final : public Sampler {
                                     std::to_string(box.y1) +
                                     ", beyond the 2^24 texels a float rasterizer addresses exactly; use "
                                     "compute counting");
-    const vk::RasterPipeline& pipeline = raster_pipeline();
+    const vk::RasterPipeline& pipeline = raster_pipeline(subgroup_reduction);
     const std::uint32_t vertices = 3 * scene_.triangle_count();
     // The geometry shader's margin: vertices snap to 2^-bits of a pixel, and texel coordinates
     // pass through NDC in float (about 1e-3 of a texel in a 4096-texel tile).
@@ -239,14 +256,16 @@ class VulkanSampler final : public Sampler {
 
   /// Built on first use: conservative rasterization where the device has it, else the
   /// geometry shader dilates each triangle.
-  const vk::RasterPipeline& raster_pipeline() {
-    if (!raster_) {
+  const vk::RasterPipeline& raster_pipeline(bool subgroup_reduction) {
+    std::unique_ptr<vk::RasterPipeline>& raster = raster_[subgroup_reduction];
+    if (!raster) {
       const bool conservative = context_->capabilities().conservative_rasterization;
-      vk::RasterStages stages{spirv::counting_raster_vert, {}, spirv::counting_raster_frag, conservative};
+      const std::uint32_t constants[] = {subgroup_reduction};
+      vk::RasterStages stages{spirv::counting_raster_vert, {}, spirv::counting_raster_frag, conservative, constants};
       if (!conservative) stages.geometry = spirv::counting_raster_geom;
-      raster_ = std::make_unique<vk::RasterPipeline>(context_->create_raster(stages, sizeof(gpu::RasterPush)));
+      raster = std::make_unique<vk::RasterPipeline>(context_->create_raster(stages, sizeof(gpu::RasterPush)));
     }
-    return *raster_;
+    return *raster;
   }
 
   /// Grows the sample buffer to at least n samples; returns how many it holds.
@@ -314,23 +333,35 @@ class VulkanSampler final : public Sampler {
     if (frame.scan_used == ScanOrder::unordered && n_tri > 0) {
       const gpu::ScanPush scan{buffers_.counts.address(), buffers_.cdf.address(), 0, buffers_.inverse.address(),
                                buffers_.totals.address(), n_tri, std::uint32_t(64 - std::bit_width(std::uint64_t(n_tri))), 0};
-      c.dispatch(pipelines_.scan_unordered, &scan, sizeof scan, workgroups_for(n_tri));
+      c.dispatch(reducing(request.vulkan.subgroup_reduction).scan_unordered, &scan, sizeof scan, workgroups_for(n_tri));
       c.barrier();
+    } else if (frame.scan_used == ScanOrder::lookback) {
+      lookback_.record(c, buffers_.counts.address(), buffers_.cdf.address(), n_tri);
     } else {
       scan_.record(c, pipelines_, buffers_.counts.address(), buffers_.cdf.address(), n_tri);
     }
     c.timestamp(to_string(Pass::scan));
     if (capacity > 0) {
       const PhiloxKey key = stream_key(request.seed, Stream::realization);
-      const gpu::RealizationPush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
-                                      buffers_.max_density.address(), buffers_.cdf.address(),
-                                      trs_inverse(frame)->address(), buffers_.samples.address(),
-                                      buffers_.totals.address(), key[0], key[1], n_tri,
-                                      device_max_tries(context_->device_name(), request.max_tries)};
+      gpu::RealizationPush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
+                                buffers_.max_density.address(), buffers_.cdf.address(),
+                                trs_inverse(frame)->address(), buffers_.samples.address(),
+                                buffers_.totals.address(), 0, key[0], key[1], n_tri,
+                                device_max_tries(context_->device_name(), request.max_tries)};
+      if (request.vulkan.inverse_cdf && n_tri > 0) record_guide(c, push);
       record_realization(c, pipelines_.realization, push, {.method = gpu::kPlanTrs}, capacity);
       c.timestamp(to_string(Pass::realization));
     }
     return submit(c, frame);
+  }
+
+  /// Builds realization's inverse CDF (the "Inverse CDF" ablation) and points `push` at it.
+  void record_guide(Commands& c, gpu::RealizationPush& push) {
+    const VkDeviceSize bytes = (VkDeviceSize(push.triangle_count) + 1) * sizeof(std::uint32_t);
+    if (!buffers_.guide || buffers_.guide.size() < bytes) buffers_.guide = context_->create_buffer(bytes);
+    push.guide = buffers_.guide.address();
+    c.dispatch(pipelines_.realization_guide, &push, sizeof push, workgroups_for(push.triangle_count + std::uint64_t(1)));
+    c.barrier();
   }
 
   /// Records and runs one frame of plain rejection sampling: the bound of every map (and N-bar
@@ -416,12 +447,15 @@ class VulkanSampler final : public Sampler {
   std::unique_ptr<vk::Context> context_;
   vk::GpuScene scene_;
   vk::Pipelines pipelines_;
+  vk::ReducingPipelines reducing_;                  ///< with subgroup reduction
+  std::optional<vk::ReducingPipelines> unreduced_;  ///< without: the ablation, made on first use
   vk::OrderedScan scan_;
+  vk::LookbackScan lookback_;
   FrameBuffers buffers_;
-  std::unique_ptr<vk::RasterPipeline> raster_;
+  std::array<std::unique_ptr<vk::RasterPipeline>, 2> raster_;  ///< by subgroup reduction (1: with)
   std::uint64_t last_count_ = 0;  ///< N of the last frame without a target: the next one's bound
-  std::optional<Counting> counted_;   ///< the path whose counts the buffers hold; none: to count
-  std::optional<Counting> counting_;  ///< the path the commands being recorded count by
+  std::optional<CountingMode> counted_;   ///< the mode whose counts the buffers hold; none: to count
+  std::optional<CountingMode> counting_;  ///< the mode the commands being recorded count by
   std::vector<bool> stale_;           ///< per map: replaced since the last count
 };
 
