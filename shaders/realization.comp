@@ -26,18 +26,6 @@ bool draw_candidate(uint64_t segment, uint64_t candidate, out Sample drawn) {
 
 #include "candidate_stream.glsl"
 
-uint64_t cdf_at(uint position) { return uint64_at(p.cdf, position).v[0]; }
-
-// The first processing index whose inclusive CDF exceeds sample_index.
-uint processing_index(uint64_t sample_index) {
-  uint lo = 0u, hi = p.triangle_count - 1u;
-  while (lo < hi) {
-    uint mid = lo + (hi - lo) / 2u;
-    if (cdf_at(mid) > sample_index) hi = mid; else lo = mid + 1u;
-  }
-  return lo;
-}
-
 void main() {
   Totals totals = Totals(p.totals);
   uint64_t n = totals.t.realized;
@@ -48,8 +36,8 @@ void main() {
   for (uint64_t c = uint64_t(gl_WorkGroupID.x) * uint64_t(gl_NumSubgroups) + uint64_t(gl_SubgroupID); c < chunks;
        c += stride) {
     uint64_t lo = c * uint64_t(kSegmentSlots), hi = min(lo + uint64_t(kSegmentSlots), n);
-    for (uint position = processing_index(lo); position < p.triangle_count; ++position) {
-      uint64_t start = position > 0u ? cdf_at(position - 1u) : 0ul, end = cdf_at(position);
+    for (uint position = processing_index(p.cdf, p.triangle_count, lo); position < p.triangle_count; ++position) {
+      uint64_t start = position > 0u ? cdf_at(p.cdf, position - 1u) : 0ul, end = cdf_at(p.cdf, position);
       if (start >= hi) break;
       uint64_t segment = start >= lo ? 0ul : (lo - start + uint64_t(kSegmentSlots) - 1ul) / uint64_t(kSegmentSlots);
       uint64_t first = start + segment * uint64_t(kSegmentSlots);

@@ -3,7 +3,8 @@
 // Section 6): a triangle cut along the texel lattice by ordinary polygon clipping, one piece per
 // texel it overlaps. The clipping runs in the triangle's barycentric plane (b1, b2), where the
 // triangle is the unit simplex and a texel is the preimage of its square under the triangle's
-// affine map, so that a point drawn in a piece is already a sample's barycentrics.
+// affine map, so that a point drawn in a piece is already a sample's barycentrics. The GLSL twin
+// is shaders/texel_pieces.glsl.
 
 #include <algorithm>
 #include <array>

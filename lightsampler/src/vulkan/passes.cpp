@@ -5,6 +5,9 @@
 #include "spirv/counting_cells_comp.h"
 #include "spirv/counting_setup_comp.h"
 #include "spirv/counting_triangles_comp.h"
+#include "spirv/frs_comp.h"
+#include "spirv/naive_counting_comp.h"
+#include "spirv/naive_realization_comp.h"
 #include "spirv/realization_comp.h"
 #include "spirv/realization_plan_comp.h"
 #include "spirv/rejection_distribution_comp.h"
@@ -29,7 +32,10 @@ Pipelines::Pipelines(Context& c)
       realization_plan(c.create_compute(spirv::realization_plan_comp, sizeof(gpu::PlanPush))),
       realization(c.create_compute(spirv::realization_comp, sizeof(gpu::RealizationPush))),
       rejection_distribution(c.create_compute(spirv::rejection_distribution_comp, sizeof(gpu::RejectionPush))),
-      rejection(c.create_compute(spirv::rejection_comp, sizeof(gpu::RejectionPush))) {}
+      rejection(c.create_compute(spirv::rejection_comp, sizeof(gpu::RejectionPush))),
+      frs(c.create_compute(spirv::frs_comp, sizeof(gpu::FrsPush))),
+      naive_counting(c.create_compute(spirv::naive_counting_comp, sizeof(gpu::CountingPush))),
+      naive_realization(c.create_compute(spirv::naive_realization_comp, sizeof(gpu::RealizationPush))) {}
 
 std::uint32_t workgroups_for(std::uint64_t elements) {
   const std::uint64_t groups = (elements + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize;

@@ -12,7 +12,8 @@ namespace lightsampler::vk {
 struct Pipelines {
   explicit Pipelines(Context& context);
   ComputePipeline counting_setup, counting_cells, counting_triangles, counting_total, rounding, scan_unordered,
-      scan_local, scan_add, realization_plan, realization, rejection_distribution, rejection;
+      scan_local, scan_add, realization_plan, realization, rejection_distribution, rejection, frs, naive_counting,
+      naive_realization;
 };
 
 /// Workgroups for a grid-stride pass over `elements` (at least one, at most kMaxWorkgroups).
