@@ -1,10 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Naive triangle stratification's realization (cpu::naive_realize): one invocation per slot. The
-// slot's triangle draws a texel piece in proportion to density times area (a walk over its
-// pieces) and a uniform point in it; no rejection, but a point that rounding puts in another
-// texel than its piece's is drawn again, up to max_tries attempts. The same stream and
-// arithmetic as the CPU backend: the same samples.
+// slot's triangle draws a texel piece in proportion to density times area (a search in the CDF
+// of its pieces that counting wrote, then the piece clipped again) and a uniform point in it; no
+// rejection, but a point that rounding puts in another texel than its piece's is drawn again,
+// up to max_tries attempts. The same stream and arithmetic as the CPU backend: the same samples.
 #include "texel_pieces.glsl"
 #include "workgroup.glsl"
 #include "grid.glsl"
@@ -39,18 +39,36 @@ bool lands_in(TexelTriangle t, vec2 b, int64_t ix, int64_t iy) {
   return floor_to_int(q.x) == ix && floor_to_int(q.y) == iy;
 }
 
+// The piece cpu/naive.cpp draws for `target`, a uniform in [0, 1) times the total: the first
+// cell of the triangle's piece CDF (`cells` > 0 doubles from address `cdf`, ending at `total`)
+// whose sum exceeds it, or that reaches the total (rounding can put the target there: the last
+// piece of positive weight). A zero-weight cell never rises past the sum before it, so the cell
+// found holds a piece.
+uint64_t pick_cell(uint64_t cdf, uint64_t cells, double total, double target) {
+  uint64_t lo = 0ul, hi = cells - 1ul;
+  while (lo < hi) {
+    uint64_t mid = lo + (hi - lo) / 2ul;
+    double sum = Doubles(cdf + mid * 8ul).v[0];
+    if (sum > target || sum >= total) hi = mid; else lo = mid + 1ul;
+  }
+  return lo;
+}
+
 // Attempt `attempt` at slot k of triangle tri: two draws of four words, told apart by bit 31 of
 // the last word (max_tries stays below 2^31). Returns whether the point lands in its piece.
-bool attempt_slot(uint tri, TexelTriangle t, DensityMap map, double weight, uint64_t k, uint attempt,
-                  out Sample drawn) {
+bool attempt_slot(uint tri, TexelTriangle t, PieceLattice l, uint64_t cdf, uint64_t cells, uint64_t k,
+                  uint attempt, out Sample drawn) {
   uvec4 c = uvec4(tri, uint(k), uint(k >> 32), attempt);
   uvec2 key = uvec2(p.key0, p.key1);
   uvec4 u = philox4x32(c, key), v = philox4x32(uvec4(c.xyz, c.w | 0x80000000u), key);
-  precise double target = (double(u.x) + double(u.y) * 4294967296.0lf) * (1.0lf / 18446744073709551616.0lf) * weight;
-  TexelPiece piece = walk_texel_pieces(t, map, p.texels, true, target).piece;
-  dvec2 b = point_in(piece.polygon, piece.area, uniform_float(u.z), uniform_float(v.x), uniform_float(v.y));
+  double total = Doubles(cdf + (cells - 1ul) * 8ul).v[0];
+  precise double target = (double(u.x) + double(u.y) * 4294967296.0lf) * (1.0lf / 18446744073709551616.0lf) * total;
+  uint64_t j = pick_cell(cdf, cells, total, target);
+  int64_t ix = l.x0 + int64_t(j % lattice_columns(l)), iy = l.y0 + int64_t(j / lattice_columns(l));
+  BaryPolygon piece = lattice_piece(l, ix, iy);
+  dvec2 b = point_in(piece, polygon_area(piece), uniform_float(u.z), uniform_float(v.x), uniform_float(v.y));
   drawn = Sample(tri, float(b.x), float(b.y));
-  return lands_in(t, vec2(drawn.b1, drawn.b2), piece.ix, piece.iy);
+  return lands_in(t, vec2(drawn.b1, drawn.b2), ix, iy);
 }
 
 void main() {
@@ -62,13 +80,14 @@ void main() {
     // N_T > 0, so the triangle has a map and pieces of positive weight.
     uint tri = Uints(p.inverse).v[position];
     TexelTriangle t = Triangles(p.triangles).v[tri];
-    DensityMap map = Maps(p.maps).v[t.map];
-    double weight = Doubles(p.weights).v[tri];
+    uint64_t first = uint64_at(p.piece_offsets, uint64_t(tri)).v[0];
+    uint64_t cells = uint64_at(p.piece_offsets, uint64_t(tri) + 1ul).v[0] - first;
+    PieceLattice l = piece_lattice(t);
     Sample x = Sample(tri, 0.0, 0.0);
     bool landed = false;
     uint attempts = 0u;
     while (!landed && attempts < p.max_tries) {
-      landed = attempt_slot(tri, t, map, weight, k, attempts, x);
+      landed = attempt_slot(tri, t, l, p.piece_cdf + first * 8ul, cells, k, attempts, x);
       ++attempts;
     }
     tries += uint64_t(attempts);

@@ -79,7 +79,10 @@ struct CountingPush {
   uint64_t stale_maps;   // uint[maps]: non-zero for a map whose triangles to count; 0 (no buffer): all
   uint triangle_count;
   uint small_cells;      // setup pass: count triangles of at most this many cells itself (0: none)
-  uint64_t weights;      // naive stratification: double[T], what its realization draws pieces by
+  uint64_t piece_offsets;  // naive stratification: uint64[T + 1], the first cell of each
+                           // triangle's lattice box (core::piece_cells) in piece_cdf
+  uint64_t piece_cdf;      // double[cells]: per triangle, density times area of its texel pieces
+                           // summed row by row up to each cell of its box
 };
 
 struct RasterPush {
@@ -122,8 +125,8 @@ struct RealizationPush {
   uint64_t maps;
   uint64_t texels;
   uint64_t max_density;
-  uint64_t weights;   // naive stratification: double[T], density times barycentric area summed
-                      // over the triangle's texel pieces (the total its pieces are drawn from)
+  uint64_t piece_offsets;  // naive stratification: as in CountingPush
+  uint64_t piece_cdf;
   uint64_t cdf;
   uint64_t inverse;
   uint64_t samples;

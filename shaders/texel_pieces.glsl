@@ -69,7 +69,8 @@ BaryPolygon clip(BaryPolygon polygon, double a0, double a1, double c) {
 }
 
 // A triangle's affine map from barycentrics to texel space, and the lattice cells [x0, x1] x
-// [y0, y1] of its bounding box. `uv_flat`: no UV area, the triangle lies in the cell of its origin.
+// [y0, y1] its pieces lie in (core::piece_cells): its bounding box or, with no UV area
+// (`uv_flat`), the one cell of its origin, whose piece is the whole triangle.
 struct PieceLattice {
   dvec2 origin, edge1, edge2;
   int64_t x0, y0, x1, y1;
@@ -86,12 +87,14 @@ PieceLattice piece_lattice(TexelTriangle t) {
   precise dvec2 b = l.origin + l.edge1, c = l.origin + l.edge2;
   dvec2 lo = min(l.origin, min(b, c)), hi = max(l.origin, max(b, c));
   // Texel coordinates stay below 2^56 (common.glsl), so the conversions are defined.
-  l.x0 = int64_t(floor(lo.x));
-  l.y0 = int64_t(floor(lo.y));
-  l.x1 = int64_t(floor(hi.x));
-  l.y1 = int64_t(floor(hi.y));
+  l.x0 = l.uv_flat ? floor_to_int(t.origin_x) : int64_t(floor(lo.x));
+  l.y0 = l.uv_flat ? floor_to_int(t.origin_y) : int64_t(floor(lo.y));
+  l.x1 = l.uv_flat ? l.x0 : int64_t(floor(hi.x));
+  l.y1 = l.uv_flat ? l.y0 : int64_t(floor(hi.y));
   return l;
 }
+
+uint64_t lattice_columns(PieceLattice l) { return uint64_t(l.x1 - l.x0 + 1l); }
 
 // The part of the triangle in the row iy <= y < iy + 1.
 BaryPolygon row_piece(PieceLattice l, int64_t iy) {
@@ -105,65 +108,51 @@ BaryPolygon cell_piece(PieceLattice l, BaryPolygon row, int64_t ix) {
   return clip(right, -l.edge1.x, -l.edge2.x, double(ix + 1l) - l.origin.x);
 }
 
-// The barycentric area of the part of triangle t in lattice cell (ix, iy), as the walk below
-// measures that piece (0: none); twice it is the fraction of the triangle in the cell. One
-// (triangle, cell) pair on its own, for passes that visit cells rather than triangles.
-double clipped_area(TexelTriangle t, int64_t ix, int64_t iy) {
-  PieceLattice l = piece_lattice(t);
-  if (l.uv_flat) return ix == floor_to_int(t.origin_x) && iy == floor_to_int(t.origin_y) ? 0.5lf : 0.0lf;
+// The piece of the triangle in cell (ix, iy) of its lattice: what core::for_each_texel_piece
+// clips there, vertex for vertex (fewer than 3 vertices: none).
+BaryPolygon lattice_piece(PieceLattice l, int64_t ix, int64_t iy) {
+  if (l.uv_flat) return ix == l.x0 && iy == l.y0 ? unit_simplex() : empty_polygon();
   BaryPolygon row = row_piece(l, iy);
-  if (row.n < 3) return 0.0lf;
-  BaryPolygon cell = cell_piece(l, row, ix);
-  return cell.n < 3 ? 0.0lf : polygon_area(cell);
+  return row.n < 3 ? empty_polygon() : cell_piece(l, row, ix);
 }
 
-// The part of a triangle in lattice cell (ix, iy).
-struct TexelPiece {
-  int64_t ix, iy;
-  BaryPolygon polygon;
-  double area;  // barycentric units
-};
-
-// What a walk over a triangle's texel pieces (row by row, as core::for_each_texel_piece) found.
-struct PieceWalk {
-  double weight;     // density times area, summed over the pieces walked
-  float bound;       // the largest density of a piece walked
-  TexelPiece piece;  // the piece picked (see walk_texel_pieces)
-};
-
-void visit_piece(inout PieceWalk w, DensityMap map, uint64_t texels, TexelPiece piece) {
-  float density = cell_density(map, texels, piece.ix, piece.iy);
-  precise double weight = double(density) * piece.area;
-  w.weight += weight;
-  w.bound = max(w.bound, density);
-  if (weight > 0.0lf) w.piece = piece;
+// The barycentric area of the part of triangle t in lattice cell (ix, iy), as naive
+// stratification measures that piece (0: none); twice it is the fraction of the triangle in the
+// cell. One (triangle, cell) pair on its own, for passes that visit cells rather than triangles.
+double clipped_area(TexelTriangle t, int64_t ix, int64_t iy) {
+  BaryPolygon piece = lattice_piece(piece_lattice(t), ix, iy);
+  return piece.n < 3 ? 0.0lf : polygon_area(piece);
 }
 
-// Walks the pieces of triangle t (which has a map): the sum and bound of every piece or, with
-// `pick`, the first piece of positive weight at which the weight so far exceeds `target`, or the
-// last such piece if none does (cpu/naive.cpp picks from its pieces' CDF so).
-PieceWalk walk_texel_pieces(TexelTriangle t, DensityMap map, uint64_t texels, bool pick, double target) {
+// A triangle's pieces summed: density times barycentric area, and the largest density of a piece.
+struct PieceSums {
+  double weight;
+  float bound;
+};
+
+// Walks the pieces of triangle t (which has a map) row by row, as core::for_each_texel_piece,
+// and writes the weight summed so far at every cell of its lattice box, row-major: `cells`
+// doubles from address `cdf` (the CDF that realization searches; the last is the total).
+PieceSums walk_texel_pieces(TexelTriangle t, DensityMap map, uint64_t texels, uint64_t cdf, uint64_t cells) {
   PieceLattice l = piece_lattice(t);
-  PieceWalk w = PieceWalk(0.0lf, 0.0, TexelPiece(0l, 0l, unit_simplex(), 0.5lf));
-  if (l.uv_flat) {
-    w.piece.ix = floor_to_int(t.origin_x);
-    w.piece.iy = floor_to_int(t.origin_y);
-    visit_piece(w, map, texels, w.piece);
-    return w;
-  }
+  PieceSums sums = PieceSums(0.0lf, 0.0);
+  uint64_t j = 0ul;  // the cell's index in the box
   for (int64_t iy = l.y0; iy <= l.y1; ++iy) {
-    BaryPolygon row = row_piece(l, iy);
-    if (row.n < 3) continue;
-    for (int64_t ix = l.x0; ix <= l.x1; ++ix) {
-      BaryPolygon cell = cell_piece(l, row, ix);
-      if (cell.n < 3) continue;
-      double area = polygon_area(cell);
-      if (!(area > 0.0lf)) continue;
-      visit_piece(w, map, texels, TexelPiece(ix, iy, cell, area));
-      if (pick && w.weight > target) return w;
+    // One row clipped for all its cells, as the host clips it.
+    BaryPolygon row = l.uv_flat ? unit_simplex() : row_piece(l, iy);
+    for (int64_t ix = l.x0; ix <= l.x1; ++ix, ++j) {
+      BaryPolygon piece = l.uv_flat ? row : row.n < 3 ? empty_polygon() : cell_piece(l, row, ix);
+      double area = piece.n < 3 ? 0.0lf : polygon_area(piece);
+      if (area > 0.0lf) {
+        float density = cell_density(map, texels, ix, iy);
+        precise double weight = double(density) * area;
+        sums.weight += weight;
+        sums.bound = max(sums.bound, density);
+      }
+      if (j < cells) Doubles(cdf + j * 8ul).v[0] = sums.weight;
     }
   }
-  return w;
+  return sums;
 }
 
 #endif

@@ -54,7 +54,7 @@ std::uint32_t device_max_tries(const std::string& device, std::uint32_t requeste
 /// Per-triangle and per-frame device buffers, grown on demand and kept between frames.
 struct FrameBuffers {
   Buffer expected, max_density, footprint, cell_cdf, counts, cdf, inverse, identity, totals, samples;
-  Buffer weights;          ///< naive stratification: double per triangle (shaders/naive_counting.comp)
+  Buffer piece_cdf;        ///< naive stratification: double per lattice cell (GpuScene::piece_cells)
   Buffer totals_readback;  ///< host-visible copy of `totals`: shader atomics stay in device memory
   Buffer dispatch_args;    ///< realization's indirect workgroup counts, written by the plan pass
   Buffer stale_maps;       ///< uint per map: 1 where a partial count counts the map's triangles
@@ -90,7 +90,6 @@ class VulkanSampler final : public Sampler {
     buffers_.max_density = context_->create_buffer(t * sizeof(std::uint32_t));
     for (Buffer* b : {&buffers_.footprint, &buffers_.cell_cdf, &buffers_.counts, &buffers_.cdf})
       *b = context_->create_buffer(t * sizeof(std::uint64_t));
-    buffers_.weights = context_->create_buffer(t * sizeof(double));
     buffers_.inverse = context_->create_buffer(t * sizeof(std::uint32_t));
     // The ordered scan keeps triangles in place: its inverse permutation is the identity.
     std::vector<std::uint32_t> identity(scene_.triangle_count());
@@ -202,11 +201,17 @@ class VulkanSampler final : public Sampler {
   }
 
   /// Naive stratification's counting (paper, Section 3.2): one invocation per triangle walks its
-  /// texels with the polygon clipper. Every triangle, when the buffers do not hold its counts
-  /// yet or a map changed; reported as the per-triangle path.
+  /// texels with the polygon clipper, writing the CDF of its pieces. Every triangle, when the
+  /// buffers do not hold its counts yet or a map changed; reported as the per-triangle path.
   void record_naive_counting(Commands& c, Frame& frame) {
+    const VkDeviceSize cdf_bytes = std::max<std::uint64_t>(scene_.piece_cells(), 1) * sizeof(double);
+    if (!buffers_.piece_cdf || buffers_.piece_cdf.size() < cdf_bytes) {
+      buffers_.piece_cdf = context_->create_buffer(cdf_bytes);
+      counted_.reset();  // the CDF is lost with the old buffer
+    }
     gpu::CountingPush push = count_push();
-    push.weights = buffers_.weights.address();
+    push.piece_offsets = scene_.piece_offsets();
+    push.piece_cdf = buffers_.piece_cdf.address();
     if (counted_ != Counts{Counting::per_triangle, true} || any_stale()) {
       c.dispatch(pipelines_.naive_counting, &push, sizeof push, workgroups_for(scene_.triangle_count()));
       c.barrier();
@@ -382,8 +387,9 @@ class VulkanSampler final : public Sampler {
     if (capacity > 0) {
       const PhiloxKey key = stream_key(request.seed, naive ? Stream::naive : Stream::realization);
       const gpu::RealizationPush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
-                                      buffers_.max_density.address(), buffers_.weights.address(),
-                                      buffers_.cdf.address(), trs_inverse(frame)->address(),
+                                      buffers_.max_density.address(), scene_.piece_offsets(),
+                                      naive ? buffers_.piece_cdf.address() : 0, buffers_.cdf.address(),
+                                      trs_inverse(frame)->address(),
                                       buffers_.samples.address(), buffers_.totals.address(), key[0], key[1], n_tri,
                                       device_max_tries(context_->device_name(), request.max_tries)};
       record_realization(c, naive ? pipelines_.naive_realization : pipelines_.realization, push,
