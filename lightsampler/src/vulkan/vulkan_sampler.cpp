@@ -321,12 +321,13 @@ class VulkanSampler final : public Sampler {
                               ? std::uint64_t(std::ceil(*request.target_count * (1.0 + 0x1p-10))) + n_tri + 1
                               : last_count_ + last_count_ / 64 + 1024;
     // FRS's N is known on the host, from its table (as on the CPU backend): the bound is exact.
-    if (frs) bound = frs_sample_count(request, frs_table(frame));
+    const std::uint64_t frs_count = frs ? frs_sample_count(request, frs_table(frame)) : 0;
+    if (frs) bound = frs_count;
     for (;;) {
       const std::uint64_t capacity = request.realize ? ensure_samples(bound) : 0;
       const std::uint64_t limit = request.realize ? capacity : bound;  // the N this run is valid for
       const gpu::FrameTotals totals = stratified ? run_stratified(request, frame, capacity, limit)
-                                      : frs      ? run_frs(request, frame, bound, capacity)
+                                      : frs      ? run_frs(request, frame, frs_count, capacity)
                                                  : run_rejection(request, frame, capacity);
       frame.candidates = totals.candidates;
       frame.exhausted = totals.exhausted;
