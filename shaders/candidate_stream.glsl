@@ -8,7 +8,7 @@
 #ifndef LIGHTSAMPLER_CANDIDATE_STREAM_GLSL
 #define LIGHTSAMPLER_CANDIDATE_STREAM_GLSL
 
-#include "common.glsl"
+#include "workgroup.glsl"
 
 // Candidate and slot tallies of one invocation, summed over the segments it walks.
 struct WalkTally {
@@ -44,6 +44,22 @@ void walk_segment(uint64_t samples, uint64_t segment, uint64_t first, uint slots
     filled += min(subgroupAdd(fills ? 1u : 0u), slots - filled);
     rejections = subgroupMax(lane == width - 1u ? run % uint64_t(max_tries) : 0ul);
   }
+}
+
+// The whole output as one run of segments, as if one element held every sample (plain rejection
+// sampling, FRS): the subgroups take its segments in turn, and the frame's totals count their
+// tries. Call at the top level of main.
+void walk_output(Totals totals, uint64_t samples, uint max_tries) {
+  uint64_t n = totals.t.realized;
+  uint64_t segments = (n + uint64_t(kSegmentSlots) - 1ul) / uint64_t(kSegmentSlots);
+  uint64_t stride = uint64_t(gl_NumWorkGroups.x) * uint64_t(gl_NumSubgroups);
+  WalkTally tally = WalkTally(0ul, 0ul);
+  for (uint64_t s = uint64_t(gl_WorkGroupID.x) * uint64_t(gl_NumSubgroups) + uint64_t(gl_SubgroupID); s < segments;
+       s += stride) {
+    uint64_t first = s * uint64_t(kSegmentSlots);
+    walk_segment(samples, s, first, uint(min(uint64_t(kSegmentSlots), n - first)), max_tries, tally);
+  }
+  count_tries(totals, tally.candidates, tally.exhausted);
 }
 
 #endif

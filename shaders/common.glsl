@@ -53,6 +53,26 @@ layout(buffer_reference, std430, buffer_reference_align = 8) buffer Totals { Fra
 // Element i of a uint64 array beyond 2^32 elements: index by address arithmetic.
 Uint64s uint64_at(uint64_t base, uint64_t i) { return Uint64s(base + i * 8ul); }
 
+// ---- the counts' inclusive CDF over processing indices (uint64[count]) ----
+
+uint64_t cdf_at(uint64_t cdf, uint position) { return uint64_at(cdf, position).v[0]; }
+
+// The first processing index in [lo, hi] whose inclusive CDF exceeds sample_index, given one
+// does (hi where none before it does).
+uint first_above(uint64_t cdf, uint64_t sample_index, uint lo, uint hi) {
+  while (lo < hi) {
+    uint mid = lo + (hi - lo) / 2u;
+    if (cdf_at(cdf, mid) > sample_index) hi = mid; else lo = mid + 1u;
+  }
+  return lo;
+}
+
+// The first processing index whose inclusive CDF exceeds sample_index: the triangle whose slots
+// hold that sample.
+uint processing_index(uint64_t cdf, uint count, uint64_t sample_index) {
+  return first_above(cdf, sample_index, 0u, count - 1u);
+}
+
 // ---- texel lookup (core/density.h: address, cell_density, floor_to_int, point_density) ----
 
 // Cell i of any sign, wrapped or clamped into [0, n). Wrap reduces |i| in unsigned arithmetic:

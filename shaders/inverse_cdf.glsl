@@ -8,16 +8,6 @@
 
 #include "common.glsl"
 
-// The first processing index in [lo, hi] whose inclusive CDF exceeds sample_index, given one
-// does (hi where none before it does).
-uint first_above(uint64_t cdf, uint64_t sample_index, uint lo, uint hi) {
-  while (lo < hi) {
-    uint mid = lo + (hi - lo) / 2u;
-    if (uint64_at(cdf, mid).v[0] > sample_index) hi = mid; else lo = mid + 1u;
-  }
-  return lo;
-}
-
 // Sample indices per bucket: at least one, and at most `triangles` buckets below `samples`.
 uint64_t guide_bucket(uint64_t samples, uint triangles) {
   return max((samples + uint64_t(triangles) - 1ul) / uint64_t(triangles), 1ul);

@@ -27,12 +27,10 @@ bool draw_candidate(uint64_t segment, uint64_t candidate, out Sample drawn) {
 
 #include "candidate_stream.glsl"
 
-uint64_t cdf_at(uint position) { return uint64_at(p.cdf, position).v[0]; }
-
-// The first processing index whose inclusive CDF exceeds sample_index, searched within the
-// guide table's bounds when the frame has one.
-uint processing_index(uint64_t sample_index) {
-  if (p.guide == 0ul) return first_above(p.cdf, sample_index, 0u, p.triangle_count - 1u);
+// The processing index of the triangle holding sample `sample_index`, searched within the guide
+// table's bounds when the frame has one.
+uint first_position(uint64_t sample_index) {
+  if (p.guide == 0ul) return processing_index(p.cdf, p.triangle_count, sample_index);
   uint b = uint(sample_index / guide_bucket(Totals(p.totals).t.sample_count, p.triangle_count));
   return first_above(p.cdf, sample_index, Uints(p.guide).v[b], Uints(p.guide).v[b + 1u]);
 }
@@ -47,8 +45,8 @@ void main() {
   for (uint64_t c = uint64_t(gl_WorkGroupID.x) * uint64_t(gl_NumSubgroups) + uint64_t(gl_SubgroupID); c < chunks;
        c += stride) {
     uint64_t lo = c * uint64_t(kSegmentSlots), hi = min(lo + uint64_t(kSegmentSlots), n);
-    for (uint position = processing_index(lo); position < p.triangle_count; ++position) {
-      uint64_t start = position > 0u ? cdf_at(position - 1u) : 0ul, end = cdf_at(position);
+    for (uint position = first_position(lo); position < p.triangle_count; ++position) {
+      uint64_t start = position > 0u ? cdf_at(p.cdf, position - 1u) : 0ul, end = cdf_at(p.cdf, position);
       if (start >= hi) break;
       uint64_t segment = start >= lo ? 0ul : (lo - start + uint64_t(kSegmentSlots) - 1ul) / uint64_t(kSegmentSlots);
       uint64_t first = start + segment * uint64_t(kSegmentSlots);

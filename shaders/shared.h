@@ -79,6 +79,10 @@ struct CountingPush {
   uint64_t stale_maps;   // uint[maps]: non-zero for a map whose triangles to count; 0 (no buffer): all
   uint triangle_count;
   uint small_cells;      // setup pass: count triangles of at most this many cells itself (0: none)
+  uint64_t piece_offsets;  // naive stratification: uint64[T + 1], the first cell of each
+                           // triangle's lattice box (core::piece_cells) in piece_cdf
+  uint64_t piece_cdf;      // double[cells]: per triangle, density times area of its texel pieces
+                           // summed row by row up to each cell of its box
 };
 
 struct RasterPush {
@@ -127,6 +131,8 @@ struct RealizationPush {
   uint64_t maps;
   uint64_t texels;
   uint64_t max_density;
+  uint64_t piece_offsets;  // naive stratification: as in CountingPush
+  uint64_t piece_cdf;
   uint64_t cdf;
   uint64_t inverse;
   uint64_t samples;
@@ -137,7 +143,7 @@ struct RealizationPush {
   uint max_tries;
 };
 
-LS_CONST uint kPlanTrs = 0u;        // N from the rounding pass
+LS_CONST uint kPlanTrs = 0u;        // N already in the totals: from the rounding pass, or (FRS) the host
 LS_CONST uint kPlanRejection = 1u;  // N: the target (or N-bar) rounded, if anything can be drawn
 
 // Realization's workgroups take chunks of kSegmentSlots samples, one per subgroup at a time:
@@ -174,6 +180,23 @@ struct RejectionPush {
   uint max_tries;
   uint texel_count;   // texels of map `map` (the global-max pass runs once per map)
   uint map;
+};
+
+/// Fast rejection sampling over the micro-triangles of core::FrsTable (M of them).
+struct FrsPush {
+  uint64_t triangles;
+  uint64_t maps;
+  uint64_t texels;
+  uint64_t cdf;       // double[M], inclusive CDF of world area times bound
+  uint64_t guide;     // uint[M + 1], its cutpoints (core/area_pick.h)
+  uint64_t parent;    // uint[M], the caller's triangle
+  uint64_t corners;   // float[6 M], barycentrics (b1, b2) of the 3 corners in the parent
+  uint64_t bound;     // float[M]
+  uint64_t samples;
+  uint64_t totals;
+  uint key0, key1;
+  uint micro_count;   // M
+  uint max_tries;
 };
 
 #ifdef __cplusplus

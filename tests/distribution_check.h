@@ -49,6 +49,8 @@ inline constexpr FamilyMember kDistributionFamily[] = {
     {"Vulkan TRS, raster counting (vulkan_sampler_test)", true},
     {"Vulkan rejection sampling (vulkan_sampler_test)", true},
     {"Vulkan refined TRS (vulkan_sampler_test)", true},
+    {"Vulkan naive stratification (vulkan_sampler_test)", true},
+    {"Vulkan fast rejection sampling (vulkan_sampler_test)", true},
 };
 
 /// How many tests the family holds: its members times the scenarios they run over.

@@ -155,7 +155,7 @@ TEST(Distribution, RejectsFastRejectionSamplingWithHalvedBounds) {
   const core::DensityMap map{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
   const auto records = core::make_triangle_records(s.mesh.view(), 1);
   const auto tris = trs_test::texel_triangles(s);
-  cpu::FrsTable table = cpu::frs_build(records, tris, {&map, 1});
+  core::FrsTable table = core::frs_build(records, tris, {&map, 1});
   for (float& b : table.bound) b *= 0.5f;
   cpu::frs_sample(table, tris, {&map, 1}, frame.sample_count, stream_key(s.seed, Stream::frs), 1u << 20,
                   frame.samples);

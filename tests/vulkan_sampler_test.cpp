@@ -224,15 +224,35 @@ TEST_F(VulkanSampler, SamplesFollowTheDensity) {
   }
 }
 
-// Naive stratification and FRS have no Vulkan passes: asking for them is an error, not another
-// method.
-TEST_F(VulkanSampler, NaiveStratificationAndFrsAreRefused) {
-  const trs_test::Scenario s = trs_test::scenarios()[0];
-  auto sampler = gpu(s.mesh, {s.map});
-  Frame f;
-  for (Method method : {Method::naive, Method::frs})
-    EXPECT_THROW(sampler->generate({.seed = 1, .target_count = 100, .method = method}, f), std::invalid_argument)
-        << to_string(method);
+TEST_F(VulkanSampler, NaiveStratificationAndFrsFollowTheDensity) {
+  for (const trs_test::Scenario& s : trs_test::scenarios()) {
+    auto sampler = gpu(s.mesh, {s.map});
+    const Frame naive = generate(*sampler, {.seed = s.seed, .target_count = s.target, .method = Method::naive});
+    EXPECT_EQ(naive.exhausted, 0u) << s.name;
+    const auto strata = trs_test::test_per_triangle(s, naive.samples.span());
+    EXPECT_GT(strata.dof, 100) << s.name;
+    EXPECT_TRUE(strata.passes(trs_test::kDistributionAlpha)) << s.name << ", naive\n" << strata.describe();
+    const Frame frs = generate(*sampler, {.seed = s.seed, .target_count = s.target, .method = Method::frs});
+    EXPECT_EQ(frs.exhausted, 0u) << s.name;
+    EXPECT_GT(frs.setup_bytes, 0u) << s.name;
+    const auto all = trs_test::test_all_cells(s, frs.samples.span());
+    EXPECT_GT(all.dof, 100) << s.name;
+    EXPECT_TRUE(all.passes(trs_test::kDistributionAlpha)) << s.name << ", frs\n" << all.describe();
+  }
+}
+
+TEST_F(VulkanSampler, RejectsNaiveStratificationAndFrsOfAnotherDensity) {
+  // Both samplers run on the square root of the map: the same support, the wrong shares (naive
+  // stratification's pieces weighted as the CPU test's wrong variant weights them), which the
+  // checks against the true density must catch on the device's samples too.
+  const trs_test::Scenario s = trs_test::scenarios()[2];
+  Map flatter = s.map;
+  for (float& texel : flatter.texels) texel = std::sqrt(texel);
+  auto sampler = gpu(s.mesh, {flatter});
+  const Frame naive = generate(*sampler, {.seed = s.seed, .target_count = s.target, .method = Method::naive});
+  EXPECT_FALSE(trs_test::test_per_triangle(s, naive.samples.span()).passes(trs_test::kDistributionAlpha));
+  const Frame frs = generate(*sampler, {.seed = s.seed, .target_count = s.target, .method = Method::frs});
+  EXPECT_FALSE(trs_test::test_all_cells(s, frs.samples.span()).passes(trs_test::kDistributionAlpha));
 }
 
 TEST_F(VulkanSampler, RefinedSamplesFollowTheDensity) {
@@ -406,6 +426,76 @@ TEST_F(VulkanSampler, RejectionSamplingWithoutATargetDrawsTheCpuSamples) {
   EXPECT_LE(std::max(want.sample_count, got.sample_count) - std::min(want.sample_count, got.sample_count), 1u);
   ASSERT_EQ(got.samples.size(), got.sample_count);
   expect_same_samples_in_order(want, got);
+}
+
+TEST_F(VulkanSampler, FrsDrawsTheCpuSamples) {
+  // The same table (built on the host), the same stream and arithmetic: sample i is the CPU's,
+  // with the same candidate and exhausted counts, also when few tries per slot exhaust slots.
+  // The table is built by the first frame and again after update_map, timed as `distribution`.
+  const Mesh mesh = trs_test::random_triangles(200, 0.0f, 1.0f, 51);
+  std::vector<Map> maps = {trs_test::random_map(32, 32, 0.5, 52)};
+  auto sampler = gpu(mesh, maps);
+  auto has_distribution = [](const Frame& f) {
+    return std::any_of(f.passes.begin(), f.passes.end(), [](const PassTime& p) { return p.pass == Pass::distribution; });
+  };
+  for (std::uint32_t max_tries : {1u << 28, 2u}) {
+    SCOPED_TRACE(max_tries);
+    const FrameRequest request{.seed = 7, .target_count = 1e5, .method = Method::frs, .max_tries = max_tries};
+    const Frame want = generate(*cpu(mesh, maps), request), got = generate(*sampler, request);
+    EXPECT_EQ(has_distribution(got), max_tries != 2u) << "built by the first frame only";
+    EXPECT_EQ(got.setup_bytes, want.setup_bytes);
+    EXPECT_EQ(got.expected_total, want.expected_total);
+    ASSERT_EQ(got.sample_count, want.sample_count);
+    ASSERT_EQ(got.samples.size(), want.samples.size());
+    expect_same_samples_in_order(want, got);
+    EXPECT_EQ(got.candidates, want.candidates);
+    EXPECT_EQ(got.exhausted, want.exhausted);
+    if (max_tries == 2u) EXPECT_GT(want.exhausted, 0u);
+  }
+  maps[0] = trs_test::random_map(16, 16, 0.3, 53);
+  sampler->update_map(0, maps[0].view());
+  const FrameRequest request{.seed = 8, .method = Method::frs};  // N-bar from the new table
+  const Frame want = generate(*cpu(mesh, maps), request), got = generate(*sampler, request);
+  EXPECT_TRUE(has_distribution(got));
+  ASSERT_EQ(got.sample_count, want.sample_count);
+  ASSERT_EQ(got.samples.size(), got.sample_count);
+  expect_same_samples_in_order(want, got);
+}
+
+TEST_F(VulkanSampler, NaiveStratificationDrawsTheCpuSamples) {
+  // The clipper's pieces and the stream of cpu/naive.cpp: where both backends give a triangle the
+  // same N_T, its samples are the CPU's. On texel-aligned quads every count agrees and the
+  // ordered scan puts every sample in the CPU's slot.
+  const Mesh quads = texel_aligned_quads(40, 61);
+  const std::vector<Map> quad_maps = {trs_test::random_map(16, 16, 0.5, 62)};
+  const FrameRequest ordered{.seed = 3, .target_count = 50000, .method = Method::naive, .scan = ScanOrder::ordered};
+  const Frame want = generate(*cpu(quads, quad_maps), ordered), got = generate(*gpu(quads, quad_maps), ordered);
+  ASSERT_EQ(got.counts.size(), want.counts.size());
+  for (std::size_t t = 0; t < want.counts.size(); ++t) ASSERT_EQ(got.counts[t], want.counts[t]) << "triangle " << t;
+  ASSERT_EQ(got.samples.size(), want.samples.size());
+  expect_same_samples_in_order(want, got);
+  EXPECT_EQ(got.candidates, want.candidates);
+  EXPECT_EQ(got.exhausted, want.exhausted);
+
+  // Random triangles: N-bar_T by clipping agrees with the CPU's up to the float sum, D_T^max
+  // exactly, and the samples wherever N_T agree.
+  const Mesh mesh = trs_test::random_triangles(200, 0.0f, 1.0f, 63);
+  const std::vector<Map> maps = {trs_test::random_map(16, 16, 0.3, 64)};
+  const FrameRequest request{.seed = 5, .target_count = 3e4, .method = Method::naive};
+  const Frame reference = generate(*cpu(mesh, maps), request);
+  auto sampler = gpu(mesh, maps);
+  const Frame f = generate(*sampler, request);
+  EXPECT_EQ(f.counting_used, Counting::per_triangle);
+  ASSERT_EQ(f.expected_counts.size(), reference.expected_counts.size());
+  for (std::size_t t = 0; t < f.expected_counts.size(); ++t) {
+    EXPECT_NEAR(f.expected_counts[t], reference.expected_counts[t], 1e-5 * reference.expected_counts[t]) << t;
+    EXPECT_EQ(f.max_density[t], reference.max_density[t]) << t;
+  }
+  EXPECT_GT(expect_same_samples_where_counts_agree(reference, f), reference.counts.size() * 9 / 10);
+  // Its counts are kept until a map changes, and are not TRS's.
+  EXPECT_EQ(generate(*sampler, request).counting_used, std::nullopt);
+  EXPECT_EQ(generate(*sampler, {.seed = 5, .target_count = 3e4}).counting_used, Counting::automatic);
+  EXPECT_EQ(generate(*sampler, request).counting_used, Counting::per_triangle);
 }
 
 TEST_F(VulkanSampler, UnorderedScanIsAPermutation) {
@@ -647,4 +737,7 @@ TEST_F(VulkanSampler, ReportsTheDeviceAndPerPassTimes) {
     EXPECT_GE(p.ms, 0.0) << to_string(p.pass);
   }
   EXPECT_EQ(passes, (std::vector<Pass>{Pass::counting, Pass::rounding, Pass::scan, Pass::realization, Pass::readback}));
+  passes.clear();
+  for (const PassTime& p : generate(*sampler, {.target_count = 1000, .method = Method::frs}).passes) passes.push_back(p.pass);
+  EXPECT_EQ(passes, (std::vector<Pass>{Pass::distribution, Pass::realization, Pass::readback}));
 }

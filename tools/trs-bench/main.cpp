@@ -109,8 +109,6 @@ std::vector<Variant> make_variants(const CommandLine& cl) {
     const auto backend = vulkan ? lightsampler::Backend::vulkan : lightsampler::Backend::cpu;
     for (const auto& method_name : cl.methods) {
       const auto method = trs::kMethods.at(method_name);
-      const bool cpu_only = method == lightsampler::Method::naive || method == lightsampler::Method::frs;
-      if (vulkan && cpu_only) continue;
       if (!vulkan || method != lightsampler::Method::trs) {
         variants.push_back({.backend = backend, .method = method, .counting = lightsampler::Counting::automatic});
         continue;
@@ -176,8 +174,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--methods", cl.methods,
                  "Methods: trs (Triangle Rejection Sampling), rs (plain rejection sampling), "
-                 "naive (naive triangle stratification), frs (fast rejection sampling; naive and "
-                 "frs on the CPU backend only)")
+                 "naive (naive triangle stratification), frs (fast rejection sampling)")
       ->delimiter(',')
       ->check(CLI::IsMember(trs::names(trs::kMethods)))
       ->capture_default_str();

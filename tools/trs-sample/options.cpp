@@ -51,7 +51,7 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--method", method,
                  "Triangle Rejection Sampling, plain rejection sampling, naive triangle "
-                 "stratification or fast rejection sampling (FRS; these two on the CPU backend only)")
+                 "stratification or fast rejection sampling (FRS)")
       ->check(CLI::IsMember(names(kMethods)))
       ->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads; 0: all hardware threads")

@@ -20,7 +20,9 @@ namespace lightsampler {
 /// each triangle walks its texels with a polygon clipper, counts by clipped area and draws texel
 /// piece by texel piece); or fast rejection sampling after Šik and Křivánek (2013: the mesh
 /// subdivided once until the density is nearly constant on each part, then rejection against
-/// each part's bound, parts drawn from one CDF). naive and frs run on the CPU backend only.
+/// each part's bound, parts drawn from one CDF). Every method runs on both backends, with the same
+/// samples; the Vulkan backend counts naive stratification by one invocation per triangle
+/// (reported as Counting::per_triangle) and builds FRS's table on the host.
 enum class Method { trs, rejection, naive, frs };
 
 /// How the per-triangle counts are turned into a CDF. `unordered` is the paper's Algorithm 3

@@ -2,7 +2,7 @@
 // Plain rejection sampling's pick of a triangle by area: the first triangle whose inclusive area
 // CDF exceeds u times the total area. A guide table (Chen and Asau's cutpoints) narrows the
 // binary search to about one bucket of the CDF, so a pick costs a few loads whatever the
-// triangle count. The GLSL twin is pick_by_area in shaders/rejection.comp; both give exactly
+// triangle count. The GLSL twin is pick_by_cdf in shaders/cdf_pick.glsl; both give exactly
 // the triangle a binary search over the whole CDF gives.
 
 #include <algorithm>

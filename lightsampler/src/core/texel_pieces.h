@@ -3,7 +3,8 @@
 // Section 6): a triangle cut along the texel lattice by ordinary polygon clipping, one piece per
 // texel it overlaps. The clipping runs in the triangle's barycentric plane (b1, b2), where the
 // triangle is the unit simplex and a texel is the preimage of its square under the triangle's
-// affine map, so that a point drawn in a piece is already a sample's barycentrics.
+// affine map, so that a point drawn in a piece is already a sample's barycentrics. The GLSL twin
+// is shaders/texel_pieces.glsl.
 
 #include <algorithm>
 #include <array>
@@ -56,6 +57,29 @@ inline BaryPolygon clip(const BaryPolygon& in, double a0, double a1, double c) {
   return out;
 }
 
+/// The lattice cells [x0, x1] x [y0, y1] that for_each_texel_piece visits: the triangle's
+/// bounding box or, for a triangle without UV area (`flat`), the one cell of its origin, whose
+/// piece is the whole triangle. The Vulkan backend keeps a CDF over these cells, row by row.
+struct PieceCells {
+  std::int64_t x0, y0, x1, y1;
+  bool flat;
+  std::uint64_t count() const { return std::uint64_t(x1 - x0 + 1) * std::uint64_t(y1 - y0 + 1); }
+};
+
+inline PieceCells piece_cells(const TexelTriangle& t) {
+  const double ox = t.origin[0], oy = t.origin[1];
+  const double e1x = t.edge1[0], e1y = t.edge1[1], e2x = t.edge2[0], e2y = t.edge2[1];
+  if (e1x * e2y - e1y * e2x == 0.0) {
+    const std::int64_t ix = floor_to_int(t.origin[0]), iy = floor_to_int(t.origin[1]);
+    return {ix, iy, ix, iy, true};
+  }
+  const double xs[3] = {ox, ox + e1x, ox + e2x}, ys[3] = {oy, oy + e1y, oy + e2y};
+  return {std::int64_t(std::floor(std::min({xs[0], xs[1], xs[2]}))),
+          std::int64_t(std::floor(std::min({ys[0], ys[1], ys[2]}))),
+          std::int64_t(std::floor(std::max({xs[0], xs[1], xs[2]}))),
+          std::int64_t(std::floor(std::max({ys[0], ys[1], ys[2]}))), false};
+}
+
 /// Calls fn(const TexelPiece&) for every lattice cell the triangle overlaps with non-zero area,
 /// row by row. A triangle without UV area lies in the one cell of its origin.
 template <class Fn>
@@ -67,20 +91,16 @@ void for_each_texel_piece(const TexelTriangle& t, Fn&& fn) {
   simplex.v[1] = {1.0, 0.0};
   simplex.v[2] = {0.0, 1.0};
   simplex.n = 3;
-  if (e1x * e2y - e1y * e2x == 0.0) {
-    fn(TexelPiece{floor_to_int(t.origin[0]), floor_to_int(t.origin[1]), simplex, 0.5});
+  const PieceCells cells = piece_cells(t);
+  if (cells.flat) {
+    fn(TexelPiece{cells.x0, cells.y0, simplex, 0.5});
     return;
   }
-  const double xs[3] = {ox, ox + e1x, ox + e2x}, ys[3] = {oy, oy + e1y, oy + e2y};
-  const auto x0 = std::int64_t(std::floor(std::min({xs[0], xs[1], xs[2]})));
-  const auto x1 = std::int64_t(std::floor(std::max({xs[0], xs[1], xs[2]})));
-  const auto y0 = std::int64_t(std::floor(std::min({ys[0], ys[1], ys[2]})));
-  const auto y1 = std::int64_t(std::floor(std::max({ys[0], ys[1], ys[2]})));
-  for (std::int64_t iy = y0; iy <= y1; ++iy) {
+  for (std::int64_t iy = cells.y0; iy <= cells.y1; ++iy) {
     // The row iy <= y < iy + 1, then each cell ix <= x < ix + 1 of it.
     const BaryPolygon row = clip(clip(simplex, e1y, e2y, oy - double(iy)), -e1y, -e2y, double(iy + 1) - oy);
     if (row.n < 3) continue;
-    for (std::int64_t ix = x0; ix <= x1; ++ix) {
+    for (std::int64_t ix = cells.x0; ix <= cells.x1; ++ix) {
       const BaryPolygon cell = clip(clip(row, e1x, e2x, ox - double(ix)), -e1x, -e2x, double(ix + 1) - ox);
       if (cell.n < 3) continue;
       const double area = cell.area();

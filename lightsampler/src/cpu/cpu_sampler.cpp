@@ -209,7 +209,7 @@ class CpuSampler final : public Sampler {
   void generate_frs(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
     clear_triangle_outputs(frame);
     if (!frs_) {
-      frs_ = cpu::frs_build(scene_.triangles(), scene_.texel_triangles(), scene_.maps());
+      frs_ = core::frs_build(scene_.triangles(), scene_.texel_triangles(), scene_.maps());
       frame.passes.push_back({Pass::distribution, pass.lap_ms()});
     }
     frame.expected_total = frs_->expected_total;
@@ -237,7 +237,7 @@ class CpuSampler final : public Sampler {
   Buffer<double> expected_counts_;
   Buffer<float> max_density_;
   double expected_total_ = 0.0;
-  std::optional<cpu::FrsTable> frs_;
+  std::optional<core::FrsTable> frs_;
   Buffer<double> area_cdf_;
   std::vector<std::uint32_t> area_guide_;
 };

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "core/area_pick.h"
+#include "core/texel_pieces.h"
 #include "vulkan/layouts.h"
 
 namespace lightsampler::vk {
@@ -85,10 +86,12 @@ void GpuScene::upload_triangles() {
   candidate_cells_ = large_triangle_cells_ = 0;
   small_triangle_cells_ = records.size() >= kManyTriangles ? kSmallTriangleCells : 0;
   std::vector<gpu::TexelTriangle> gpu(records.size());
+  std::vector<std::uint64_t> piece_offsets(records.size() + 1, 0);
   for (std::size_t t = 0; t < records.size(); ++t) {
     const core::TexelTriangle& tt = texel_triangles[t];
     gpu[t] = {tt.origin[0], tt.origin[1], tt.edge1[0], tt.edge1[1], tt.edge2[0], tt.edge2[1],
               float(records[t].area), tt.map};
+    piece_offsets[t + 1] = piece_offsets[t] + (tt.map == kNoMap ? 0 : core::piece_cells(tt).count());
     if (tt.map == kNoMap) continue;
     const LatticeBox cells = bounding_cells(tt);
     extend(map_boxes_[tt.map], cells);
@@ -100,6 +103,10 @@ void GpuScene::upload_triangles() {
   }
   if (!triangles_) triangles_ = context_.create_buffer(gpu.size() * sizeof(gpu::TexelTriangle));
   if (!gpu.empty()) context_.upload(triangles_, 0, gpu.data(), gpu.size() * sizeof(gpu::TexelTriangle));
+  const VkDeviceSize offset_bytes = piece_offsets.size() * sizeof(std::uint64_t);
+  if (!piece_offsets_) piece_offsets_ = context_.create_buffer(offset_bytes);
+  context_.upload(piece_offsets_, 0, piece_offsets.data(), offset_bytes);
+  piece_cells_ = piece_offsets.back();
 }
 
 }  // namespace lightsampler::vk

@@ -39,6 +39,10 @@ class GpuScene {
   VkDeviceAddress texels() const { return texels_.address(); }
   VkDeviceAddress area_cdf() const { return area_cdf_.address(); }
   VkDeviceAddress area_guide() const { return area_guide_.address(); }
+  /// Naive stratification: uint64[T + 1], where each triangle's lattice cells (core::piece_cells,
+  /// none without a map) start in one array of all of them, and how many there are.
+  VkDeviceAddress piece_offsets() const { return piece_offsets_.address(); }
+  std::uint64_t piece_cells() const { return piece_cells_; }
 
  private:
   void upload_maps();
@@ -50,8 +54,9 @@ class GpuScene {
   std::uint64_t candidate_cells_ = 0;
   std::uint32_t small_triangle_cells_ = 0;
   std::uint64_t large_triangle_cells_ = 0;
-  Buffer triangles_, map_records_, texels_, area_cdf_, area_guide_;
+  Buffer triangles_, map_records_, texels_, area_cdf_, area_guide_, piece_offsets_;
   double total_area_ = 0;
+  std::uint64_t piece_cells_ = 0;
 };
 
 }  // namespace lightsampler::vk

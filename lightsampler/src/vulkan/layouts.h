@@ -17,14 +17,18 @@ static_assert(sizeof(FrameTotals) == 56 && offsetof(FrameTotals, sample_count) =
 static_assert(sizeof(WritePush) == 16);
 static_assert(sizeof(PlanPush) == 56 && offsetof(PlanPush, target) == 24 && offsetof(PlanPush, max_workgroups) == 40 &&
               offsetof(PlanPush, key1) == 52);
-static_assert(sizeof(CountingPush) == 80 && offsetof(CountingPush, stale_maps) == 64 && offsetof(CountingPush, triangle_count) == 72);
+static_assert(sizeof(CountingPush) == 96 && offsetof(CountingPush, stale_maps) == 64 &&
+              offsetof(CountingPush, triangle_count) == 72 && offsetof(CountingPush, piece_cdf) == 88);
 static_assert(sizeof(RasterPush) == 72 && offsetof(RasterPush, origin_x) == 48 && offsetof(RasterPush, map) == 64);
 static_assert(sizeof(RoundingPush) == 48 && offsetof(RoundingPush, target) == 24 && offsetof(RoundingPush, key0) == 32);
 static_assert(sizeof(ScanPush) == 56 && offsetof(ScanPush, sum_bits) == 48 && offsetof(ScanPush, polls) == 52);
-static_assert(sizeof(RealizationPush) == 88 && offsetof(RealizationPush, guide) == 64 &&
-              offsetof(RealizationPush, key0) == 72 && offsetof(RealizationPush, max_tries) == 84);
+static_assert(sizeof(RealizationPush) == 104 && offsetof(RealizationPush, piece_cdf) == 40 &&
+              offsetof(RealizationPush, guide) == 80 && offsetof(RealizationPush, key0) == 88 &&
+              offsetof(RealizationPush, max_tries) == 100);
 static_assert(sizeof(RejectionPush) == 80 && offsetof(RejectionPush, key0) == 56 && offsetof(RejectionPush, map) == 76);
+static_assert(sizeof(FrsPush) == 96 && offsetof(FrsPush, key0) == 80 && offsetof(FrsPush, max_tries) == 92);
 // Vulkan guarantees 128 bytes of push constants.
-static_assert(sizeof(RealizationPush) <= 128 && sizeof(RejectionPush) <= 128);
+static_assert(sizeof(CountingPush) <= 128 && sizeof(RealizationPush) <= 128 && sizeof(RejectionPush) <= 128 &&
+              sizeof(FrsPush) <= 128);
 
 }  // namespace lightsampler::gpu

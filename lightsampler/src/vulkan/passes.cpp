@@ -6,6 +6,9 @@
 #include "spirv/counting_cells_comp.h"
 #include "spirv/counting_setup_comp.h"
 #include "spirv/counting_triangles_comp.h"
+#include "spirv/frs_comp.h"
+#include "spirv/naive_counting_comp.h"
+#include "spirv/naive_realization_comp.h"
 #include "spirv/realization_comp.h"
 #include "spirv/realization_guide_comp.h"
 #include "spirv/realization_plan_comp.h"
@@ -31,7 +34,10 @@ Pipelines::Pipelines(Context& c)
       realization_plan(c.create_compute(spirv::realization_plan_comp, sizeof(gpu::PlanPush))),
       realization(c.create_compute(spirv::realization_comp, sizeof(gpu::RealizationPush))),
       rejection_distribution(c.create_compute(spirv::rejection_distribution_comp, sizeof(gpu::RejectionPush))),
-      rejection(c.create_compute(spirv::rejection_comp, sizeof(gpu::RejectionPush))) {}
+      rejection(c.create_compute(spirv::rejection_comp, sizeof(gpu::RejectionPush))),
+      frs(c.create_compute(spirv::frs_comp, sizeof(gpu::FrsPush))),
+      naive_counting(c.create_compute(spirv::naive_counting_comp, sizeof(gpu::CountingPush))),
+      naive_realization(c.create_compute(spirv::naive_realization_comp, sizeof(gpu::RealizationPush))) {}
 
 ReducingPipelines::ReducingPipelines(Context& c, bool subgroup_reduction) {
   const std::uint32_t constants[] = {subgroup_reduction};

@@ -13,7 +13,8 @@ namespace lightsampler::vk {
 struct Pipelines {
   explicit Pipelines(Context& context);
   ComputePipeline counting_setup, counting_cells, counting_triangles, rounding, scan_local, scan_add,
-      realization_guide, realization_plan, realization, rejection_distribution, rejection;
+      realization_guide, realization_plan, realization, rejection_distribution, rejection, frs, naive_counting,
+      naive_realization;
 };
 
 /// The compute passes that reduce over subgroups before their atomics, specialized with or

@@ -1,11 +1,12 @@
-// The Vulkan backend: the passes of shaders/, recorded in one submission per frame (TRS or plain
-// rejection sampling) and sized on the device.
+// The Vulkan backend: the passes of shaders/, recorded in one submission per frame and sized on
+// the device.
 
 #include <algorithm>
 #include <array>
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <numeric>
 #include <optional>
@@ -13,6 +14,7 @@
 #include <string>
 
 #include "core/frame_policy.h"
+#include "core/frs_table.h"
 #include "core/validate.h"
 #include "vulkan/gpu_scene.h"
 #include "vulkan/passes.h"
@@ -50,21 +52,36 @@ std::uint32_t device_max_tries(const std::string& device, std::uint32_t requeste
   return requested;
 }
 
-/// How N-bar_T and D_T^max are counted: the path, and whether its atomics follow a subgroup
-/// reduction.
+/// How the per-triangle count buffers' N-bar_T and D_T^max were counted: TRS's path and whether
+/// its atomics follow a subgroup reduction, or naive stratification's clipping (per triangle),
+/// which also leaves its pieces' weights.
 struct CountingMode {
   Counting path;
-  bool subgroup_reduction;
+  bool subgroup_reduction = true;
+  bool naive = false;
   bool operator==(const CountingMode&) const = default;
 };
+
+constexpr CountingMode kNaiveCounting{Counting::per_triangle, true, true};
 
 /// Per-triangle and per-frame device buffers, grown on demand and kept between frames.
 struct FrameBuffers {
   Buffer expected, max_density, footprint, cell_cdf, counts, cdf, inverse, identity, totals, samples;
   Buffer guide;            ///< uint[T + 1]: realization's inverse CDF (inverse_cdf.glsl)
+  Buffer piece_cdf;        ///< naive stratification: double per lattice cell (GpuScene::piece_cells)
   Buffer totals_readback;  ///< host-visible copy of `totals`: shader atomics stay in device memory
   Buffer dispatch_args;    ///< realization's indirect workgroup counts, written by the plan pass
   Buffer stale_maps;       ///< uint per map: 1 where a partial count counts the map's triangles
+};
+
+/// FRS's table (core/frs_table.h) on the device, built on the host by the first FRS frame and
+/// again after update_map.
+struct FrsDevice {
+  Buffer parent, corners, bound, cdf, guide;
+  std::uint32_t size = 0;
+  double expected_total = 0, total_area = 0;
+  float max_bound = 0;
+  std::uint64_t bytes = 0;
 };
 
 class VulkanSampler final : public Sampler {
@@ -102,6 +119,7 @@ class VulkanSampler final : public Sampler {
   void update_map(std::size_t index, const DensityMapView& map) override {
     scene_.update_map(index, map);
     stale_[index] = true;
+    frs_.reset();
   }
 
   float density(std::uint32_t triangle, float b1, float b2) const override {
@@ -113,8 +131,6 @@ class VulkanSampler final : public Sampler {
   }
 
   void generate(const FrameRequest& request, Frame& frame) override {
-    if (request.method == Method::naive || request.method == Method::frs)
-      throw std::invalid_argument(std::string(to_string(request.method)) + " runs on the CPU backend only");
     if (request.overlap != Overlap::closed_form)
       throw std::invalid_argument(std::string("the ") + to_string(request.overlap) +
                                   " overlap is not available on the Vulkan backend yet");
@@ -175,8 +191,7 @@ class VulkanSampler final : public Sampler {
     if (path == Counting::cpu)
       throw std::invalid_argument("the Vulkan backend has no CPU counting path; ask for raster, compute or per-triangle");
     gpu::CountingPush push = count_push(path == Counting::automatic ? scene_.small_triangle_cells() : 0);
-    const std::uint32_t groups = workgroups_for(scene_.triangle_count());
-    const bool stale = std::find(stale_.begin(), stale_.end(), true) != stale_.end();
+    const bool stale = any_stale();
     if (counted_ == mode && stale && path != Counting::raster) {
       c.fill(buffers_.stale_maps, 0, buffers_.stale_maps.size(), 0);
       for (std::size_t m = 0; m < stale_.size(); ++m)
@@ -185,9 +200,37 @@ class VulkanSampler final : public Sampler {
       push.stale_maps = buffers_.stale_maps.address();
     }
     if (counted_ != mode || stale) record_triangle_counts(c, mode, push, frame);
-    c.dispatch(reducing(mode.subgroup_reduction).counting_total, &push, sizeof push, groups);
+    record_counting_total(c, push, mode.subgroup_reduction);
+  }
+
+  bool any_stale() const { return std::find(stale_.begin(), stale_.end(), true) != stale_.end(); }
+
+  /// N-bar, the sum of the counts, ending the counting pass.
+  void record_counting_total(Commands& c, const gpu::CountingPush& push, bool subgroup_reduction) {
+    c.dispatch(reducing(subgroup_reduction).counting_total, &push, sizeof push, workgroups_for(scene_.triangle_count()));
     c.barrier();
     c.timestamp(to_string(Pass::counting));
+  }
+
+  /// Naive stratification's counting (paper, Section 3.2): one invocation per triangle walks its
+  /// texels with the polygon clipper, writing the CDF of its pieces. Every triangle, when the
+  /// buffers do not hold its counts yet or a map changed; reported as the per-triangle path.
+  void record_naive_counting(Commands& c, Frame& frame) {
+    const VkDeviceSize cdf_bytes = std::max<std::uint64_t>(scene_.piece_cells(), 1) * sizeof(double);
+    if (!buffers_.piece_cdf || buffers_.piece_cdf.size() < cdf_bytes) {
+      buffers_.piece_cdf = context_->create_buffer(cdf_bytes);
+      counted_.reset();  // the CDF is lost with the old buffer
+    }
+    gpu::CountingPush push = count_push();
+    push.piece_offsets = scene_.piece_offsets();
+    push.piece_cdf = buffers_.piece_cdf.address();
+    if (counted_ != kNaiveCounting || any_stale()) {
+      c.dispatch(pipelines_.naive_counting, &push, sizeof push, workgroups_for(scene_.triangle_count()));
+      c.barrier();
+      counting_ = kNaiveCounting;
+      frame.counting_used = Counting::per_triangle;
+    }
+    record_counting_total(c, push, true);
   }
 
   /// N-bar_T and D_T^max by `mode`, of every triangle or, with push.stale_maps, of the stale
@@ -286,14 +329,21 @@ class VulkanSampler final : public Sampler {
   /// samples.
   void run_frame(const FrameRequest& request, Frame& frame) {
     const std::uint32_t n_tri = scene_.triangle_count();
-    const bool trs = request.method == Method::trs, counted = trs || !request.target_count;
+    const bool stratified = request.method == Method::trs || request.method == Method::naive;
+    const bool frs = request.method == Method::frs;
+    const bool counted = stratified || (request.method == Method::rejection && !request.target_count);
     std::uint64_t bound = request.target_count
                               ? std::uint64_t(std::ceil(*request.target_count * (1.0 + 0x1p-10))) + n_tri + 1
                               : last_count_ + last_count_ / 64 + 1024;
+    // FRS's N is known on the host, from its table (as on the CPU backend): the bound is exact.
+    const std::uint64_t frs_count = frs ? frs_sample_count(request, frs_table(frame)) : 0;
+    if (frs) bound = frs_count;
     for (;;) {
       const std::uint64_t capacity = request.realize ? ensure_samples(bound) : 0;
       const std::uint64_t limit = request.realize ? capacity : bound;  // the N this run is valid for
-      const gpu::FrameTotals totals = trs ? run_trs(request, frame, capacity, limit) : run_rejection(request, frame, capacity);
+      const gpu::FrameTotals totals = stratified ? run_stratified(request, frame, capacity, limit)
+                                      : frs      ? run_frs(request, frame, frs_count, capacity)
+                                                 : run_rejection(request, frame, capacity);
       frame.candidates = totals.candidates;
       frame.exhausted = totals.exhausted;
       if (counted) {
@@ -305,24 +355,35 @@ class VulkanSampler final : public Sampler {
       bound = frame.sample_count + frame.sample_count / 64 + n_tri;
       frame.passes.clear();
     }
+    if (frs) {
+      frame.expected_total = frs_->expected_total;
+      frame.setup_bytes = frs_->bytes;
+    }
     if (!request.target_count) last_count_ = frame.sample_count;
-    if (!trs) frame.scan_used = ScanOrder::ordered;
+    if (!stratified) frame.scan_used = ScanOrder::ordered;
     if (request.vulkan.read_back)
-      read_back(frame, {.counted = counted, .inverse = trs ? trs_inverse(frame) : nullptr}, request.realize);
+      read_back(frame, {.counted = counted, .inverse = stratified ? trs_inverse(frame) : nullptr}, request.realize);
   }
 
   const Buffer* trs_inverse(const Frame& frame) const {
     return frame.scan_used == ScanOrder::unordered ? &buffers_.inverse : &buffers_.identity;
   }
 
-  /// Records and runs one TRS frame, its scan chosen for a total of at most `limit`, realizing
-  /// N samples if N fits in `capacity` and none otherwise. Returns the frame's totals.
-  gpu::FrameTotals run_trs(const FrameRequest& request, Frame& frame, std::uint64_t capacity, std::uint64_t limit) {
+  /// Records and runs one frame with triangles as strata, TRS or naive stratification (counting
+  /// by clipping, realization texel piece by texel piece; rounding and the scan are the same),
+  /// its scan chosen for a total of at most `limit`, realizing N samples if N fits in `capacity`
+  /// and none otherwise. Returns the frame's totals.
+  gpu::FrameTotals run_stratified(const FrameRequest& request, Frame& frame, std::uint64_t capacity,
+                                  std::uint64_t limit) {
     const std::uint32_t n_tri = scene_.triangle_count();
+    const bool naive = request.method == Method::naive;
     // Automatic: unordered, one packed atomic per subgroup (Section 5).
     frame.scan_used = core::choose_scan(request.scan, ScanOrder::unordered, n_tri, limit);
     Commands c = begin_frame_commands();
-    record_counting(c, request, frame);
+    if (naive)
+      record_naive_counting(c, frame);
+    else
+      record_counting(c, request, frame);
     const PhiloxKey rounding_key = stream_key(request.seed, Stream::rounding);
     const gpu::RoundingPush round{buffers_.expected.address(), buffers_.counts.address(), buffers_.totals.address(),
                                   request.target_count ? *request.target_count : -1.0, rounding_key[0],
@@ -342,14 +403,78 @@ class VulkanSampler final : public Sampler {
     }
     c.timestamp(to_string(Pass::scan));
     if (capacity > 0) {
-      const PhiloxKey key = stream_key(request.seed, Stream::realization);
+      const PhiloxKey key = stream_key(request.seed, naive ? Stream::naive : Stream::realization);
       gpu::RealizationPush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
-                                buffers_.max_density.address(), buffers_.cdf.address(),
+                                buffers_.max_density.address(), scene_.piece_offsets(),
+                                naive ? buffers_.piece_cdf.address() : 0, buffers_.cdf.address(),
                                 trs_inverse(frame)->address(), buffers_.samples.address(),
                                 buffers_.totals.address(), 0, key[0], key[1], n_tri,
                                 device_max_tries(context_->device_name(), request.max_tries)};
-      if (request.vulkan.inverse_cdf && n_tri > 0) record_guide(c, push);
-      record_realization(c, pipelines_.realization, push, {.method = gpu::kPlanTrs}, capacity);
+      if (request.vulkan.inverse_cdf && !naive && n_tri > 0) record_guide(c, push);
+      record_realization(c, naive ? pipelines_.naive_realization : pipelines_.realization, push,
+                         {.method = gpu::kPlanTrs}, capacity);
+      c.timestamp(to_string(Pass::realization));
+    }
+    return submit(c, frame);
+  }
+
+  /// FRS's table, built on the host and uploaded when the maps changed since the last one; the
+  /// time that takes is the frame's `distribution` pass.
+  const FrsDevice& frs_table(Frame& frame) {
+    if (frs_) return *frs_;
+    const auto start = std::chrono::steady_clock::now();
+    const core::HostScene& host = scene_.host();
+    const core::FrsTable table = core::frs_build(host.triangles(), host.texel_triangles(), host.maps());
+    FrsDevice d;
+    d.parent = upload(std::span(table.parent));
+    d.corners = upload(std::span(table.corners));
+    d.bound = upload(std::span(table.bound));
+    d.cdf = upload(table.cdf.span());
+    d.guide = upload(std::span(table.guide));
+    d.size = std::uint32_t(table.size());
+    d.expected_total = table.expected_total;
+    d.total_area = table.total_area;
+    d.max_bound = table.max_bound;
+    d.bytes = table.bytes();
+    frs_ = std::move(d);
+    frame.passes.push_back(
+        {Pass::distribution, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count()});
+    return *frs_;
+  }
+
+  /// A new device buffer holding `data` (at least one element's room: no buffer is empty).
+  template <class T>
+  Buffer upload(std::span<const T> data) {
+    Buffer b = context_->create_buffer(std::max(data.size_bytes(), sizeof(T)));
+    if (!data.empty()) context_->upload(b, 0, data.data(), data.size_bytes());
+    return b;
+  }
+
+  /// FRS's N: the target, or N-bar, rounded by the rounding stream (core::rejection_sample_count).
+  static std::uint64_t frs_sample_count(const FrameRequest& request, const FrsDevice& table) {
+    if (table.size == 0) return 0;
+    return core::rejection_sample_count(request.target_count.value_or(table.expected_total), table.max_bound,
+                                        table.total_area, request.seed);
+  }
+
+  /// Records and runs one FRS frame: its N samples, computed on the host, realized if they fit
+  /// in `capacity`. Returns the frame's totals.
+  gpu::FrameTotals run_frs(const FrameRequest& request, Frame& frame, std::uint64_t n, std::uint64_t capacity) {
+    const FrsDevice& table = *frs_;
+    Commands c = begin_frame_commands();
+    // N into the totals, where the plan pass reads it (two words: a fill writes 32 bits).
+    constexpr VkDeviceSize kCount = offsetof(gpu::FrameTotals, sample_count);
+    c.fill(buffers_.totals, kCount, sizeof(std::uint32_t), std::uint32_t(n));
+    c.fill(buffers_.totals, kCount + sizeof(std::uint32_t), sizeof(std::uint32_t), std::uint32_t(n >> 32));
+    c.barrier();
+    if (capacity > 0) {
+      const PhiloxKey key = stream_key(request.seed, Stream::frs);
+      const gpu::FrsPush push{scene_.triangles(), scene_.map_records(), scene_.texels(), table.cdf.address(),
+                              table.guide.address(), table.parent.address(), table.corners.address(),
+                              table.bound.address(), buffers_.samples.address(), buffers_.totals.address(),
+                              key[0], key[1], table.size,
+                              device_max_tries(context_->device_name(), request.max_tries)};
+      record_realization(c, pipelines_.frs, push, {.method = gpu::kPlanTrs}, capacity);
       c.timestamp(to_string(Pass::realization));
     }
     return submit(c, frame);
@@ -456,7 +581,8 @@ class VulkanSampler final : public Sampler {
   std::uint64_t last_count_ = 0;  ///< N of the last frame without a target: the next one's bound
   std::optional<CountingMode> counted_;   ///< the mode whose counts the buffers hold; none: to count
   std::optional<CountingMode> counting_;  ///< the mode the commands being recorded count by
-  std::vector<bool> stale_;           ///< per map: replaced since the last count
+  std::vector<bool> stale_;               ///< per map: replaced since the last count
+  std::optional<FrsDevice> frs_;          ///< none: to build (first FRS frame, or a map replaced since)
 };
 
 }  // namespace
