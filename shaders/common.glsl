@@ -41,6 +41,10 @@
 // instead of one per subgroup (or workgroup).
 layout(constant_id = 0) const bool kSubgroupReduction = true;
 
+// The triangle-texel overlap formula of the counting passes (lightsampler::Overlap: the closed
+// form, polygon clipping or the paper's Eq. 6), specialized by the host (Figures 11 and 12).
+layout(constant_id = 1) const uint kOverlap = kOverlapClosedForm;
+
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer Floats { float v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer Uints { uint v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 8) buffer Uint64s { uint64_t v[]; };

@@ -50,7 +50,7 @@ void accumulate(uint64_t expected, uint64_t max_density, uint tri, float contrib
 }
 
 // Where the cell [lo, hi] lies against the triangle: -1 wholly outside one edge (no overlap),
-// +1 wholly inside every edge (full overlap), 0 across an edge (the closed form decides). Edge
+// +1 wholly inside every edge (full overlap), 0 across an edge (the overlap formula decides). Edge
 // functions in double, like the overlap itself.
 int classify(TriangleCells tt, dvec2 lo, dvec2 hi) {
   dvec2 v[3] = dvec2[3](dvec2(tt.a), dvec2(tt.b), dvec2(tt.c));
@@ -80,7 +80,7 @@ float cell_contribution(TexelTriangle t, TriangleCells tt, DensityMap map, uint6
   int where = in_box ? classify(tt, lo, hi) : -1;
   double overlap = where < 0 ? 0.0lf
                  : where > 0 ? 1.0lf
-                             : rect_triangle_overlap(dvec2(tt.a), dvec2(tt.b), dvec2(tt.c), lo, hi);
+                             : boundary_overlap(dvec2(tt.a), dvec2(tt.b), dvec2(tt.c), lo, hi);
   density = overlap > 0.0lf ? cell_density(map, texels, ix, iy) : 0.0;
   return float(double(density) * overlap * double(t.area / tt.uv_area));
 }

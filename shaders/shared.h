@@ -19,6 +19,10 @@ LS_CONST uint kWorkgroupSize = 256;
 // dispatch exceeds the 65535-workgroup limit whatever the element count.
 LS_CONST uint kMaxWorkgroups = 8192;
 LS_CONST uint kNoMap = 0xffffffffu;
+// lightsampler::Overlap, in its order: the counting passes' specialization constant kOverlap.
+LS_CONST uint kOverlapClosedForm = 0u;
+LS_CONST uint kOverlapClipping = 1u;
+LS_CONST uint kOverlapSdf = 2u;
 // Slots of a segment of the candidate stream (lightsampler/src/core/candidate_stream.h): part
 // of the definition of the samples, the same on every backend.
 LS_CONST uint kSegmentSlots = 256;

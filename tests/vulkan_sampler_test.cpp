@@ -89,15 +89,17 @@ Mesh scattered_triangles(int count, float lo, float hi, float spread, std::uint6
 /// per-triangle and compute paths by triangle size: the meshes below have small and large ones). The GPU sums float
 /// contributions with float atomics: tolerance relative 1e-4 of the triangle's count (or of
 /// the largest count, for counts near zero). D_T^max is the largest texel read over the
-/// triangle's cells of positive overlap: the same texels on both backends, so equal.
-void expect_counts_agree(const Mesh& mesh, const std::vector<Map>& maps) {
-  const Frame reference = generate(*make_cpu_sampler(mesh.view(), views(maps)), {.realize = false});
+/// triangle's cells of positive overlap: the same texels on both backends, so equal. Either
+/// backend measures overlaps by `overlap`.
+void expect_counts_agree(const Mesh& mesh, const std::vector<Map>& maps, Overlap overlap = Overlap::closed_form) {
+  const Frame reference =
+      generate(*make_cpu_sampler(mesh.view(), views(maps)), {.overlap = overlap, .realize = false});
   double largest = 0;
   for (double e : reference.expected_counts) largest = std::max(largest, e);
   auto sampler = make_vulkan_sampler(mesh.view(), views(maps), {.validation = true});
   for (Counting path : {Counting::automatic, Counting::compute, Counting::raster, Counting::per_triangle}) {
     SCOPED_TRACE(to_string(path));
-    const Frame f = generate(*sampler, {.realize = false, .vulkan = {.counting = path}});
+    const Frame f = generate(*sampler, {.overlap = overlap, .realize = false, .vulkan = {.counting = path}});
     EXPECT_EQ(f.counting_used, path);
     ASSERT_EQ(f.expected_counts.size(), reference.expected_counts.size());
     for (std::size_t t = 0; t < f.expected_counts.size(); ++t) {
@@ -150,6 +152,15 @@ void expect_same_samples_in_order(const Frame& want, const Frame& got) {
 
 TEST_F(VulkanSampler, CountsAgreeWithTheCpuInsideTheUnitSquare) {
   expect_counts_agree(trs_test::random_triangles(300, 0.0f, 1.0f, 1), {trs_test::random_map(37, 23, 0.4, 2)});
+}
+
+// Polygon clipping and the paper's Eq. 6 (Figure 11) on every counting path: the CPU backend's
+// counts by the same formula, which for clipping are the closed form's.
+TEST_F(VulkanSampler, OverlapFormulasCountAsOnTheCpu) {
+  for (Overlap overlap : {Overlap::clipping, Overlap::sdf}) {
+    SCOPED_TRACE(to_string(overlap));
+    expect_counts_agree(trs_test::random_triangles(300, 0.0f, 1.0f, 1), {trs_test::random_map(37, 23, 0.4, 2)}, overlap);
+  }
 }
 
 TEST_F(VulkanSampler, CountsAgreeWithTheCpuBeyondTheUnitSquare) {

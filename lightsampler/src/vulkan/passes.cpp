@@ -1,6 +1,7 @@
 #include "vulkan/passes.h"
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 
 #include "spirv/counting_cells_comp.h"
@@ -24,10 +25,7 @@
 namespace lightsampler::vk {
 
 Pipelines::Pipelines(Context& c)
-    : counting_setup(c.create_compute(spirv::counting_setup_comp, sizeof(gpu::CountingPush))),
-      counting_cells(c.create_compute(spirv::counting_cells_comp, sizeof(gpu::CountingPush))),
-      counting_triangles(c.create_compute(spirv::counting_triangles_comp, sizeof(gpu::CountingPush))),
-      rounding(c.create_compute(spirv::rounding_comp, sizeof(gpu::RoundingPush))),
+    : rounding(c.create_compute(spirv::rounding_comp, sizeof(gpu::RoundingPush))),
       scan_local(c.create_compute(spirv::scan_local_comp, sizeof(gpu::ScanPush))),
       scan_add(c.create_compute(spirv::scan_add_comp, sizeof(gpu::ScanPush))),
       realization_guide(c.create_compute(spirv::realization_guide_comp, sizeof(gpu::RealizationPush))),
@@ -38,6 +36,21 @@ Pipelines::Pipelines(Context& c)
       frs(c.create_compute(spirv::frs_comp, sizeof(gpu::FrsPush))),
       naive_counting(c.create_compute(spirv::naive_counting_comp, sizeof(gpu::CountingPush))),
       naive_realization(c.create_compute(spirv::naive_realization_comp, sizeof(gpu::RealizationPush))) {}
+
+namespace {
+static_assert(std::uint32_t(Overlap::closed_form) == gpu::kOverlapClosedForm &&
+              std::uint32_t(Overlap::clipping) == gpu::kOverlapClipping && std::uint32_t(Overlap::sdf) == gpu::kOverlapSdf);
+
+/// Specialization constant 1 (kOverlap) after constant 0 (kSubgroupReduction, left as designed).
+std::array<std::uint32_t, 2> overlap_constants(Overlap overlap) { return {1u, std::uint32_t(overlap)}; }
+}  // namespace
+
+CountingPipelines::CountingPipelines(Context& c, Overlap overlap) {
+  const auto constants = overlap_constants(overlap);
+  setup = c.create_compute(spirv::counting_setup_comp, sizeof(gpu::CountingPush), constants);
+  cells = c.create_compute(spirv::counting_cells_comp, sizeof(gpu::CountingPush), constants);
+  triangles = c.create_compute(spirv::counting_triangles_comp, sizeof(gpu::CountingPush), constants);
+}
 
 ReducingPipelines::ReducingPipelines(Context& c, bool subgroup_reduction) {
   const std::uint32_t constants[] = {subgroup_reduction};

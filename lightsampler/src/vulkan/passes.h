@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "lightsampler/sampler.h"
 #include "vulkan/context.h"
 #include "vulkan/layouts.h"
 
@@ -12,9 +13,15 @@ namespace lightsampler::vk {
 
 struct Pipelines {
   explicit Pipelines(Context& context);
-  ComputePipeline counting_setup, counting_cells, counting_triangles, rounding, scan_local, scan_add,
-      realization_guide, realization_plan, realization, rejection_distribution, rejection, frs, naive_counting,
+  ComputePipeline rounding, scan_local, scan_add, realization_guide, realization_plan, realization, rejection_distribution, rejection, frs, naive_counting,
       naive_realization;
+};
+
+/// TRS's compute counting passes, specialized with an overlap formula (kOverlap: the closed form
+/// of the sampler as designed, or the alternatives of the paper's Figure 11).
+struct CountingPipelines {
+  CountingPipelines(Context& context, Overlap overlap);
+  ComputePipeline setup, cells, triangles;
 };
 
 /// The compute passes that reduce over subgroups before their atomics, specialized with or

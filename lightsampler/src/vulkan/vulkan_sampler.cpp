@@ -52,17 +52,18 @@ std::uint32_t device_max_tries(const std::string& device, std::uint32_t requeste
   return requested;
 }
 
-/// How the per-triangle count buffers' N-bar_T and D_T^max were counted: TRS's path and whether
-/// its atomics follow a subgroup reduction, or naive stratification's clipping (per triangle),
-/// which also leaves its pieces' weights.
+/// How the per-triangle count buffers' N-bar_T and D_T^max were counted: TRS's path, whether its
+/// atomics follow a subgroup reduction and its overlap formula, or naive stratification's
+/// clipping (per triangle), which also leaves its pieces' weights.
 struct CountingMode {
   Counting path;
   bool subgroup_reduction = true;
+  Overlap overlap = Overlap::closed_form;
   bool naive = false;
   bool operator==(const CountingMode&) const = default;
 };
 
-constexpr CountingMode kNaiveCounting{Counting::per_triangle, true, true};
+constexpr CountingMode kNaiveCounting{Counting::per_triangle, true, Overlap::closed_form, true};
 
 /// Per-triangle and per-frame device buffers, grown on demand and kept between frames.
 struct FrameBuffers {
@@ -131,9 +132,6 @@ class VulkanSampler final : public Sampler {
   }
 
   void generate(const FrameRequest& request, Frame& frame) override {
-    if (request.overlap != Overlap::closed_form)
-      throw std::invalid_argument(std::string("the ") + to_string(request.overlap) +
-                                  " overlap is not available on the Vulkan backend yet");
     core::begin_frame(request, frame);
     const auto start = std::chrono::steady_clock::now();
     run_frame(request, frame);
@@ -174,6 +172,13 @@ class VulkanSampler final : public Sampler {
             buffers_.totals.address(), 0, scene_.triangle_count(), small_cells};
   }
 
+  /// TRS's compute counting passes with `overlap`, built on first use.
+  const vk::CountingPipelines& counting_pipelines(Overlap overlap) {
+    std::optional<vk::CountingPipelines>& pipelines = counting_pipelines_[std::size_t(overlap)];
+    if (!pipelines) pipelines.emplace(*context_, overlap);
+    return *pipelines;
+  }
+
   /// The passes reducing over subgroups before their atomics, or, for the ablation, not.
   const vk::ReducingPipelines& reducing(bool subgroup_reduction) {
     if (subgroup_reduction) return reducing_;
@@ -187,7 +192,7 @@ class VulkanSampler final : public Sampler {
   /// (or raster, which adds into its results); otherwise it only sums the total.
   void record_counting(Commands& c, const FrameRequest& request, Frame& frame) {
     const Counting path = request.vulkan.counting;
-    const CountingMode mode{path, request.vulkan.subgroup_reduction};
+    const CountingMode mode{path, request.vulkan.subgroup_reduction, request.overlap};
     if (path == Counting::cpu)
       throw std::invalid_argument("the Vulkan backend has no CPU counting path; ask for raster, compute or per-triangle");
     gpu::CountingPush push = count_push(path == Counting::automatic ? scene_.small_triangle_cells() : 0);
@@ -238,13 +243,14 @@ class VulkanSampler final : public Sampler {
   void record_triangle_counts(Commands& c, CountingMode mode, const gpu::CountingPush& push, Frame& frame) {
     const Counting path = mode.path;
     const std::uint32_t groups = workgroups_for(scene_.triangle_count());
-    c.dispatch(pipelines_.counting_setup, &push, sizeof push, groups);
+    const vk::CountingPipelines& counting = counting_pipelines(mode.overlap);
+    c.dispatch(counting.setup, &push, sizeof push, groups);
     c.barrier();
     if (path == Counting::raster) {
-      record_raster_counting(c, mode.subgroup_reduction);
+      record_raster_counting(c, mode);
       frame.counting_used = Counting::raster;
     } else if (path == Counting::per_triangle) {
-      c.dispatch(pipelines_.counting_triangles, &push, sizeof push, groups);
+      c.dispatch(counting.triangles, &push, sizeof push, groups);
       c.barrier();
       frame.counting_used = Counting::per_triangle;
     } else {
@@ -254,7 +260,7 @@ class VulkanSampler final : public Sampler {
       if (cells > 0) {
         scan_.record(c, pipelines_, buffers_.footprint.address(), buffers_.cell_cdf.address(), scene_.triangle_count());
         // One invocation per run of kCellsPerRun candidates (counting_cells.comp).
-        c.dispatch(pipelines_.counting_cells, &push, sizeof push,
+        c.dispatch(counting.cells, &push, sizeof push,
                    workgroups_for((cells + gpu::kCellsPerRun - 1) / gpu::kCellsPerRun));
         c.barrier();
       }
@@ -265,7 +271,7 @@ class VulkanSampler final : public Sampler {
 
   /// The paper's counting: every map's triangles rasterized in its texel space, one draw per
   /// viewport-sized tile of the lattice cells they touch.
-  void record_raster_counting(Commands& c, bool subgroup_reduction) {
+  void record_raster_counting(Commands& c, CountingMode mode) {
     // Tile corners and vertices reach the rasterizer as floats, exact only within 2^24 texels.
     constexpr std::int64_t kExactFloat = std::int64_t(1) << 24;
     for (const vk::LatticeBox& box : scene_.map_boxes())
@@ -275,7 +281,7 @@ class VulkanSampler final : public Sampler {
                                     std::to_string(box.y1) +
                                     ", beyond the 2^24 texels a float rasterizer addresses exactly; use "
                                     "compute counting");
-    const vk::RasterPipeline& pipeline = raster_pipeline(subgroup_reduction);
+    const vk::RasterPipeline& pipeline = raster_pipeline(mode);
     const std::uint32_t vertices = 3 * scene_.triangle_count();
     // The geometry shader's margin: vertices snap to 2^-bits of a pixel, and texel coordinates
     // pass through NDC in float (about 1e-3 of a texel in a 4096-texel tile).
@@ -299,11 +305,11 @@ class VulkanSampler final : public Sampler {
 
   /// Built on first use: conservative rasterization where the device has it, else the
   /// geometry shader dilates each triangle.
-  const vk::RasterPipeline& raster_pipeline(bool subgroup_reduction) {
-    std::unique_ptr<vk::RasterPipeline>& raster = raster_[subgroup_reduction];
+  const vk::RasterPipeline& raster_pipeline(CountingMode mode) {
+    std::unique_ptr<vk::RasterPipeline>& raster = raster_[2 * std::size_t(mode.overlap) + mode.subgroup_reduction];
     if (!raster) {
       const bool conservative = context_->capabilities().conservative_rasterization;
-      const std::uint32_t constants[] = {subgroup_reduction};
+      const std::uint32_t constants[] = {mode.subgroup_reduction, std::uint32_t(mode.overlap)};
       vk::RasterStages stages{spirv::counting_raster_vert, {}, spirv::counting_raster_frag, conservative, constants};
       if (!conservative) stages.geometry = spirv::counting_raster_geom;
       raster = std::make_unique<vk::RasterPipeline>(context_->create_raster(stages, sizeof(gpu::RasterPush)));
@@ -577,7 +583,9 @@ class VulkanSampler final : public Sampler {
   vk::OrderedScan scan_;
   vk::LookbackScan lookback_;
   FrameBuffers buffers_;
-  std::array<std::unique_ptr<vk::RasterPipeline>, 2> raster_;  ///< by subgroup reduction (1: with)
+  std::array<std::optional<vk::CountingPipelines>, 3> counting_pipelines_;  ///< by overlap formula
+  /// By overlap formula, then subgroup reduction (1: with).
+  std::array<std::unique_ptr<vk::RasterPipeline>, 6> raster_;
   std::uint64_t last_count_ = 0;  ///< N of the last frame without a target: the next one's bound
   std::optional<CountingMode> counted_;   ///< the mode whose counts the buffers hold; none: to count
   std::optional<CountingMode> counting_;  ///< the mode the commands being recorded count by
