@@ -238,6 +238,21 @@ TEST_F(CliTest, NaiveAndFastRejectionSamplingOnTheCpuAndRefusedOnVulkan) {
   }
 }
 
+TEST_F(CliTest, OverlapFormulasAndTheLookbackScanOnTheCpu) {
+  const fs::path mesh = write_quad_gltf("quad.gltf");
+  const fs::path map = write_top_row_map("map.exr", 400.0f);
+  for (const std::string overlap : {"closed-form", "clipping", "sdf"}) {
+    const RunResult result = run({mesh, map, "--overlap", overlap, "--backend", "cpu", "--count", "1000",
+                                  "--stats", file("s.json")});
+    ASSERT_EQ(result.status, 0) << result.err;
+    EXPECT_EQ(read_json(file("s.json"))["overlap"], overlap);
+  }
+  EXPECT_EQ(run({mesh, map, "--overlap", "exact"}).status, 2);
+  const RunResult lookback = run({mesh, map, "--scan", "lookback", "--backend", "cpu", "--count", "1000"});
+  EXPECT_EQ(lookback.status, 1);
+  EXPECT_NE(lookback.err.find("Vulkan backend only"), std::string::npos) << lookback.err;
+}
+
 // Density only in the top image row. OBJ puts v = 0 at the image's bottom, so the samples are at
 // the quad's high-v end (v_obj near 1); glTF puts v = 0 at the top, so they are at low v.
 TEST_F(CliTest, ObjAndGltfUvConventions) {
@@ -362,6 +377,25 @@ TEST_F(CliTest, BadObjFiles) {
   expect_failure_naming({no_uvs, map}, no_uvs);
   const fs::path no_faces = write_text("nofaces.obj", vertices);
   expect_failure_naming({no_faces, map}, no_faces);
+}
+
+// The OBJ parser reads a number it cannot parse as 0: each such field is refused, named by its
+// element, index and line.
+TEST_F(CliTest, NonFiniteObjNumbersAreRefused) {
+  const fs::path map = write_constant_map("map.exr", 1.0f);
+  const std::string face = "f 1/1 2/2 3/3\n";
+  for (const auto& [text, where] : std::vector<std::pair<std::string, std::string>>{
+           {"v nan 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n", "vertex 1 (line 1): 'nan'"},
+           {"v 0 0 0\nv 1 -inf 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n", "vertex 2 (line 2): '-inf'"},
+           {"v 0 0 0\nv 1 0 0\nv 1 1 1e999\nvt 0 0\nvt 1 0\nvt 1 1\n", "vertex 3 (line 3): '1e999'"},
+           {"v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 NaN\nvt 1 1\n", "texture coordinate 2 (line 5): 'NaN'"},
+           {"v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\n  vt\tx 1\n", "texture coordinate 3 (line 6): 'x'"}}) {
+    const fs::path mesh = write_text("bad.obj", text + face);
+    expect_failure_naming({mesh, map}, mesh);
+    EXPECT_NE(run({mesh, map}).err.find(where), std::string::npos) << text;
+  }
+  const fs::path signed_numbers = write_text("signed.obj", "v +0 0 0\nv 1 0 0\nv 1 1 -0\nvt 0 0\nvt 1 0\nvt 1 1\n" + face);
+  EXPECT_EQ(run({signed_numbers, map}).status, 0);
 }
 
 TEST_F(CliTest, BadGltfFiles) {

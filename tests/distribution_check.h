@@ -42,6 +42,7 @@ inline constexpr FamilyMember kDistributionFamily[] = {
     {"CPU rejection sampling (distribution_test)", true},
     {"CPU naive stratification (distribution_test)", true},
     {"CPU fast rejection sampling (distribution_test)", true},
+    {"CPU TRS over all cells, beside Eq. 6's overlaps (distribution_test)", false},
     {"CPU refined TRS (refinement_test)", true},
     {"refinement: the correctly mapped samples (refinement_test)", false},
     {"Vulkan TRS, compute counting (vulkan_sampler_test)", true},

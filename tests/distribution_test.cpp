@@ -22,11 +22,11 @@ namespace {
 
 const double kAlpha = trs_test::kDistributionAlpha;
 
-Frame generate(const Scenario& s, Method method) {
+Frame generate(const Scenario& s, Method method, Overlap overlap = Overlap::closed_form) {
   const DensityMapView view = s.map.view();
   auto sampler = make_cpu_sampler(s.mesh.view(), {&view, 1});
   Frame frame;
-  sampler->generate({.seed = s.seed, .target_count = s.target, .method = method}, frame);
+  sampler->generate({.seed = s.seed, .target_count = s.target, .method = method, .overlap = overlap}, frame);
   for (const Sample& x : frame.samples)
     EXPECT_GT(sampler->density(x.triangle, x.b1, x.b2), 0.0f) << "a sample where the density is zero";
   return frame;
@@ -99,6 +99,29 @@ TEST(Distribution, NaiveAndTrsCountTheSame) {
       EXPECT_EQ(naive.max_density[t], trs.max_density[t]) << s.name << ", triangle " << t;
     }
   }
+}
+
+// Counting by polygon clipping (Overlap::clipping) gives what the closed form gives, up to rounding.
+TEST(Distribution, ClippingOverlapCountsAsTheClosedForm) {
+  for (const Scenario& s : trs_test::scenarios()) {
+    const Frame closed = generate(s, Method::trs), clipped = generate(s, Method::trs, Overlap::clipping);
+    for (std::size_t t = 0; t < closed.expected_counts.size(); ++t) {
+      EXPECT_NEAR(clipped.expected_counts[t], closed.expected_counts[t], 1e-9 * (1.0 + closed.expected_counts[t]))
+          << s.name << ", triangle " << t;
+      EXPECT_EQ(clipped.max_density[t], closed.max_density[t]) << s.name << ", triangle " << t;
+    }
+    EXPECT_EQ(clipped.samples.size(), closed.samples.size()) << s.name;
+  }
+}
+
+// Eq. 6's approximate overlaps (Overlap::sdf) give triangles the wrong counts: over all cells,
+// the samples of TRS counted that way do not follow the density, where counted exactly they do.
+TEST(Distribution, RejectsTrsCountedWithTheSdfOverlap) {
+  const Scenario s = trs_test::scenarios()[0];
+  const auto exact = trs_test::test_all_cells(s, generate(s, Method::trs).samples.span());
+  EXPECT_TRUE(exact.passes(kAlpha)) << exact.describe();
+  const auto approximate = trs_test::test_all_cells(s, generate(s, Method::trs, Overlap::sdf).samples.span());
+  EXPECT_FALSE(approximate.passes(kAlpha)) << approximate.describe();
 }
 
 TEST(Distribution, RejectsNaiveStratificationWithWrongPieceWeights) {

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -183,6 +185,12 @@ TEST(EdgeCases, BadMeshesAreRejectedWithWhatAndWhere) {
   nan_uv.uvs[5] = std::numeric_limits<float>::quiet_NaN();
   EXPECT_NE(error_of(nan_uv, {}).find("uv of vertex 2 is not finite"), std::string::npos);
 
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    Mesh bad_position = trs_test::quad(1, 1, 0, 0, 1, 1);
+    bad_position.positions[10] = bad;
+    EXPECT_NE(error_of(bad_position, {}).find("position of vertex 3 is not finite"), std::string::npos);
+  }
+
   Mesh short_uvs = trs_test::quad(1, 1, 0, 0, 1, 1);
   short_uvs.uvs.resize(6);
   EXPECT_NE(error_of(short_uvs, {}).find("4 positions but 3 uvs"), std::string::npos);
@@ -257,20 +265,26 @@ TEST(EdgeCases, CountsAreKeptUntilAMapChangesThenRecountedAsNew) {
   }
 }
 
-TEST(EdgeCases, NaiveAndTrsFramesOnOneSamplerEachCountTheirOwnWay) {
+TEST(EdgeCases, FramesOnOneSamplerCountAnewWhenTheCountingRuleChanges) {
   // Naive stratification keeps its counts like TRS, but its clipped counts are not the closed
-  // form's: a change of method counts anew, and each frame is what a new sampler gives.
+  // form's, nor are those of Eq. 6's overlaps: a change of method or of overlap formula counts
+  // anew, and each frame is what a new sampler gives.
   const Mesh mesh = trs_test::random_triangles(200, 0.0f, 1.0f, 15);
   const std::vector<Map> maps = {trs_test::random_map(24, 24, 0.5, 16)};
   const DensityMapView view = maps[0].view();
   auto sampler = make_cpu_sampler(mesh.view(), {&view, 1});
-  FrameRequest naive = target(1e4, 2);
+  FrameRequest naive = target(1e4, 2), sdf = target(1e4, 4), clipping = target(1e4, 5);
   naive.method = Method::naive;
+  sdf.overlap = Overlap::sdf;
+  clipping.overlap = Overlap::clipping;
+  const auto rule = [](const FrameRequest& r) { return std::pair(r.method, r.overlap); };
+  std::optional<std::pair<Method, Overlap>> counted;
   Frame frame;
-  for (const FrameRequest& request : {target(1e4, 1), naive, naive, target(1e4, 3)}) {
-    const bool method_changed = frame.method != request.method || frame.samples.empty();
+  for (const FrameRequest& request : {target(1e4, 1), naive, naive, target(1e4, 3), sdf, sdf, clipping, target(1e4, 6)}) {
     sampler->generate(request, frame);
-    EXPECT_EQ(frame.counting_used.has_value(), method_changed) << to_string(request.method);
+    EXPECT_EQ(frame.counting_used.has_value(), counted != rule(request))
+        << to_string(request.method) << ", " << to_string(request.overlap);
+    counted = rule(request);
     trs_test::expect_same_frames(frame, run(mesh, maps, request));
   }
 }

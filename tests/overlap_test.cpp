@@ -19,6 +19,7 @@
 #include <random>
 #include <string>
 
+#include "core/overlap_variants.h"
 #include "core/texel_pieces.h"
 #include "lightsampler/overlap.h"
 #include "support/polygon_clip.h"
@@ -402,4 +403,36 @@ TEST(Overlap, TexelPiecesAgreeWithTexelSpaceClipping) {
       }
     }
   }
+}
+
+// The alternatives the paper measures the closed form against (core/overlap_variants.h). Polygon
+// clipping is exact: it agrees with the closed form within the same tolerance on the random
+// cases of RandomTrianglesAroundATexel (seed 1).
+TEST(OverlapVariants, ClippingAgreesWithTheClosedForm) {
+  std::mt19937_64 rng(1);
+  for (int i = 0; i < 20000; ++i) {
+    const Triangle t = {random_point(rng, -1, 2), random_point(rng, -1, 2), random_point(rng, -1, 2)};
+    const double x[3] = {t.a.x, t.b.x, t.c.x}, y[3] = {t.a.y, t.b.y, t.c.y};
+    ASSERT_NEAR(lightsampler::core::clipped_overlap(x, y, 0, 0, 1, 1), closed_form(t, kUnitTexel),
+                tolerance(t, kUnitTexel))
+        << describe(t, kUnitTexel);
+  }
+}
+
+// Eq. 6 is right where a straight edge crosses a unit cell through its centre or misses it, and
+// wrong for a triangle smaller than the cell: the artefact of the paper's Figure 12.
+TEST(OverlapVariants, SdfApproximation) {
+  using lightsampler::core::sdf_overlap;
+  const double x[3] = {0, 2, 0}, y[3] = {0, 0, 2};  // the hypotenuse x + y = 2
+  EXPECT_DOUBLE_EQ(sdf_overlap(x, y, 0, 0, 1, 1), 1.0);   // centre 0.707 inside
+  EXPECT_DOUBLE_EQ(sdf_overlap(x, y, 1, 0, 2, 1), 0.5);   // the edge through the centre
+  EXPECT_DOUBLE_EQ(sdf_overlap(x, y, 1, 1, 2, 2), 0.0);   // centre 0.707 outside
+  EXPECT_DOUBLE_EQ(sdf_overlap(x, y, 5, 5, 6, 6), 0.0);
+  // Either orientation.
+  const double xr[3] = {0, 0, 2}, yr[3] = {0, 2, 0};
+  EXPECT_DOUBLE_EQ(sdf_overlap(xr, yr, 1, 0, 2, 1), 0.5);
+  // A triangle of area 0.02 whose hypotenuse passes through the cell's centre counts as half the cell.
+  const double sx[3] = {0.4, 0.6, 0.4}, sy[3] = {0.4, 0.4, 0.6};
+  EXPECT_NEAR(sdf_overlap(sx, sy, 0, 0, 1, 1), 0.5, 1e-15);
+  EXPECT_NEAR(lightsampler::core::clipped_overlap(sx, sy, 0, 0, 1, 1), 0.02, 1e-15);
 }

@@ -34,11 +34,11 @@ void check_mesh(const MeshData& mesh) {
     }
     const float* p = &mesh.positions[3 * std::size_t(v)];
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
-      throw FileError(mesh.file, where + " has a vertex with a non-finite position");
+      throw FileError(mesh.file, where + ": vertex " + std::to_string(v) + " has a non-finite position");
     }
     const float* t = &mesh.uvs[2 * std::size_t(v)];
     if (!std::isfinite(t[0]) || !std::isfinite(t[1])) {
-      throw FileError(mesh.file, where + " has a vertex with a non-finite UV");
+      throw FileError(mesh.file, where + ": vertex " + std::to_string(v) + " has a non-finite UV");
     }
   }
 }

@@ -1,12 +1,18 @@
 // Wavefront OBJ: positions and texture coordinates are indexed separately per face corner, so a
 // vertex of the result is a unique (v, vt) pair. tinyobjloader parses without triangulating:
 // it triangulates without checking indices (an out-of-range index would read out of bounds), so
-// indices are checked here first and polygons triangulated by triangulate_polygon.
+// indices are checked here first and polygons triangulated by triangulate_polygon. It also reads
+// a number it cannot parse ("nan", "inf", "1e999", "x") as 0 without a word, so the numbers of
+// 'v' and 'vt' lines are checked here too.
 
 #include <tiny_obj_loader.h>
 
+#include <charconv>
+#include <cmath>
+#include <fstream>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 
 #include "scene_io/file_error.h"
@@ -88,6 +94,39 @@ void check_face(const std::filesystem::path& file, const tinyobj::attrib_t& attr
   }
 }
 
+/// Throws unless every field of every 'v' (position) and 'vt' (texture coordinate) line is a
+/// finite number, naming the element, its 1-based index and the line.
+void check_vertex_numbers(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::size_t line_number = 0, positions = 0, texcoords = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_number;
+    std::string_view rest(line);
+    rest.remove_prefix(std::min(rest.find_first_not_of(" \t"), rest.size()));
+    const bool position = rest.starts_with("v ") || rest.starts_with("v\t");
+    const bool texcoord = rest.starts_with("vt ") || rest.starts_with("vt\t");
+    if (!position && !texcoord) continue;
+    const std::string element = position ? "vertex " + std::to_string(++positions)
+                                          : "texture coordinate " + std::to_string(++texcoords);
+    rest.remove_prefix(position ? 1 : 2);
+    for (;;) {
+      const std::size_t start = rest.find_first_not_of(" \t\r");
+      if (start == std::string_view::npos) break;
+      rest.remove_prefix(start);
+      const std::string_view field = rest.substr(0, rest.find_first_of(" \t\r"));
+      // from_chars takes no leading '+', which OBJ writers may emit.
+      const std::string_view digits = field.starts_with('+') ? field.substr(1) : field;
+      double value = 0;
+      const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+      if (error != std::errc() || end != digits.data() + digits.size() || !std::isfinite(value)) {
+        throw FileError(file, element + " (line " + std::to_string(line_number) + "): '" +
+                                  std::string(field) + "' is not a finite number");
+      }
+      rest.remove_prefix(field.size());
+    }
+  }
+}
+
 }  // namespace
 
 MeshData load_obj(const std::filesystem::path& file) {
@@ -103,6 +142,7 @@ MeshData load_obj(const std::filesystem::path& file) {
   if (reader.Warning().find("Degenerated face") != std::string::npos) {
     throw FileError(file, "malformed OBJ: a face has fewer than 3 corners (truncated file?)");
   }
+  check_vertex_numbers(file);
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   if (attrib.texcoords.empty()) throw FileError(file, "no texture coordinates (no 'vt' lines)");
 

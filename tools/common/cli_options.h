@@ -33,6 +33,11 @@ inline const std::map<std::string, lightsampler::Method> kMethods = {
     {"naive", lightsampler::Method::naive},
     {"frs", lightsampler::Method::frs}};
 
+inline const std::map<std::string, lightsampler::Overlap> kOverlaps = {
+    {"closed-form", lightsampler::Overlap::closed_form},
+    {"clipping", lightsampler::Overlap::clipping},
+    {"sdf", lightsampler::Overlap::sdf}};
+
 inline const std::map<std::string, lightsampler::Counting> kCountings = {
     {"auto", lightsampler::Counting::automatic},
     {"raster", lightsampler::Counting::raster},

@@ -12,7 +12,9 @@ namespace trs_bench {
 namespace {
 
 using lightsampler::FrameRequest;
+using lightsampler::Counting;
 using lightsampler::Method;
+using lightsampler::Overlap;
 using lightsampler::Pass;
 using lightsampler::Sampler;
 using lightsampler::ScanOrder;
@@ -48,7 +50,7 @@ std::map<std::pair<Backend, double>, double> run_floors(const ExperimentSettings
       CaseResult r;
       r.experiment = "floor";
       const std::string none(1, '-');
-      r.mesh = r.map = r.scan = none;
+      r.mesh = r.map = r.scan = r.overlap = none;
       r.method = "write";
       r.target = target;
       r.backend = lightsampler::to_string(v.backend);
@@ -79,9 +81,21 @@ struct Samplers {
 FrameRequest request_for(const Variant& v) {
   FrameRequest request;
   request.method = v.method;
+  request.scan = v.scan;
+  request.overlap = v.overlap;
   request.vulkan.counting = v.counting;
+  request.vulkan.subgroup_reduction = v.subgroup_reduction;
+  request.vulkan.inverse_cdf = v.inverse_cdf;
   request.vulkan.read_back = false;  // the Vulkan backend's outputs stay on the device
   return request;
+}
+
+/// The backends the variants use, in order of first use.
+std::vector<Backend> backends_of(const std::vector<Variant>& variants) {
+  std::vector<Backend> backends;
+  for (const Variant& v : variants)
+    if (std::find(backends.begin(), backends.end(), v.backend) == backends.end()) backends.push_back(v.backend);
+  return backends;
 }
 
 CaseResult describe_case(const char* experiment, const Mesh& mesh, const DensityMap& map,
@@ -97,6 +111,7 @@ CaseResult describe_case(const char* experiment, const Mesh& mesh, const Density
   r.coverage = map.coverage;
   r.method = lightsampler::to_string(request.method);
   r.scan = request.method == Method::trs ? lightsampler::to_string(request.scan) : "-";
+  r.overlap = request.method == Method::trs ? lightsampler::to_string(request.overlap) : "-";
   r.target = request.target_count.value_or(0);
   r.backend = lightsampler::to_string(sampler.backend());
   r.engine = engine;
@@ -140,12 +155,16 @@ struct SeriesTime {
 
 }  // namespace
 
-void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& settings,
-                             lightsampler::Frame& frame, Recorder& recorder) {
-  const auto floors = run_floors(settings, recorder);
+namespace {
+
+/// Every mesh x map x count x variant, as rows of `experiment`. A case whose frame time,
+/// extrapolated from the previous count of its series, exceeds the budget is skipped.
+void run_count_series(const char* experiment, const Inputs& inputs, const ExperimentSettings& settings,
+                      const std::map<std::pair<Backend, double>, double>& floors, lightsampler::Frame& frame,
+                      Recorder& recorder) {
   for (const Mesh& mesh : inputs.meshes) {
-    recorder.begin_section("Sample count: " + mesh.name + ", " +
-                           std::to_string(mesh.triangle_count()) + " triangles");
+    recorder.begin_section(std::string(experiment == std::string("sampling") ? "Sample count" : "Ablation") +
+                           ": " + mesh.name + ", " + std::to_string(mesh.triangle_count()) + " triangles");
     for (const DensityMap& map : inputs.maps) {
       Samplers samplers(mesh, map, settings);
       std::vector<SeriesTime> series(settings.variants.size());
@@ -155,8 +174,10 @@ void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& set
           Sampler& sampler = samplers.of(variant);
           FrameRequest request = request_for(variant);
           request.target_count = target;
-          CaseResult result = describe_case("sampling", mesh, map, sampler, request, variant.engine(), settings);
-          result.floor_ms = floors.at({variant.backend, target});
+          CaseResult result = describe_case(experiment, mesh, map, sampler, request, variant.engine(), settings);
+          result.variant = variant.ablation;
+          if (const auto floor = floors.find({variant.backend, target}); floor != floors.end())
+            result.floor_ms = floor->second;
           const std::optional<double> estimate = series[k].estimate_ms(target);
           if (estimate && *estimate > settings.measure.budget_s * 1e3) {
             result.estimate_ms = *estimate;
@@ -172,6 +193,74 @@ void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& set
       }
     }
   }
+}
+
+}  // namespace
+
+void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& settings,
+                             lightsampler::Frame& frame, Recorder& recorder) {
+  run_count_series("sampling", inputs, settings, run_floors(settings, recorder), frame, recorder);
+}
+
+std::vector<Variant> ablation_variants(Backend backend) {
+  const Variant full{.backend = backend, .method = Method::trs, .counting = Counting::automatic, .ablation = "full"};
+  const auto with = [&](const char* name, auto change) {
+    Variant v = full;
+    v.ablation = name;
+    change(v);
+    return v;
+  };
+  std::vector<Variant> variants = {full};
+  if (backend == Backend::vulkan) {
+    variants.push_back(with("raster-counting", [](Variant& v) { v.counting = Counting::raster; }));
+    variants.push_back(with("compute-counting", [](Variant& v) { v.counting = Counting::compute; }));
+    variants.push_back(with("per-triangle-counting", [](Variant& v) { v.counting = Counting::per_triangle; }));
+    variants.push_back(with("no-subgroup-reduction", [](Variant& v) { v.subgroup_reduction = false; }));
+    variants.push_back(with("inverse-cdf", [](Variant& v) { v.inverse_cdf = true; }));
+    variants.push_back(with("ordered-scan", [](Variant& v) { v.scan = ScanOrder::ordered; }));
+    variants.push_back(with("lookback-scan", [](Variant& v) { v.scan = ScanOrder::lookback; }));
+  } else {
+    // The CPU backend's own choice is the ordered scan.
+    variants.push_back(with("unordered-scan", [](Variant& v) { v.scan = ScanOrder::unordered; }));
+  }
+  variants.push_back(with("clipping-overlap", [](Variant& v) { v.overlap = Overlap::clipping; }));
+  variants.push_back(with("sdf-overlap", [](Variant& v) { v.overlap = Overlap::sdf; }));
+  return variants;
+}
+
+void run_ablation_experiment(const Inputs& inputs, const ExperimentSettings& settings,
+                             lightsampler::Frame& frame, Recorder& recorder) {
+  ExperimentSettings ablation = settings;
+  ablation.variants.clear();
+  for (Backend backend : backends_of(settings.variants))
+    for (const Variant& v : ablation_variants(backend)) ablation.variants.push_back(v);
+  ablation.measure.recount = true;
+  run_count_series("ablation", inputs, ablation, {}, frame, recorder);
+}
+
+void run_overlap_experiment(const Inputs& inputs, const ExperimentSettings& settings,
+                            lightsampler::Frame& frame, Recorder& recorder) {
+  recorder.begin_section("Overlap formula (every frame counts; frames stop after the scan)");
+  MeasureSettings counting_each_frame = settings.measure;
+  counting_each_frame.recount = true;
+  for (const Mesh& mesh : inputs.meshes)
+    for (const DensityMap& map : inputs.maps) {
+      Samplers samplers(mesh, map, settings);
+      for (const Variant& variant : settings.variants) {
+        if (variant.method != Method::trs) continue;
+        for (Overlap overlap : {Overlap::closed_form, Overlap::clipping, Overlap::sdf}) {
+          FrameRequest request = request_for(variant);
+          request.overlap = overlap;
+          request.target_count = settings.scan_target;
+          request.realize = false;
+          CaseResult result = describe_case("overlap", mesh, map, samplers.of(variant), request, variant.engine(), settings);
+          const lightsampler::DensityMapView view = map.view();
+          result.measured = measure(samplers.of(variant), frame, request, kFirstSeed, counting_each_frame, {&view, 1});
+          result.scan = result.measured->scan_used;
+          recorder.add(std::move(result));
+        }
+      }
+    }
 }
 
 void run_scan_experiment(const Inputs& inputs, const ExperimentSettings& settings,

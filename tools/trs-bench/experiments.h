@@ -1,7 +1,7 @@
 #pragma once
 // The experiments, after the paper's Section 6: frame time against the sample count, TRS beside
-// plain rejection sampling (Figure 8), and the unordered against the ordered scan across triangle
-// counts (Figure 13).
+// the baselines (Figures 8 to 10), the triangle-texel overlap formulas (Figure 11), the scans
+// across triangle counts (Figure 13), and the ablations of Figure 14.
 
 #include <string>
 #include <vector>
@@ -22,9 +22,15 @@ struct Inputs {
 
 /// One way of sampling, compared side by side with the others on the same inputs.
 struct Variant {
-  lightsampler::Backend backend;    ///< cpu or vulkan
-  lightsampler::Method method;
-  lightsampler::Counting counting;  ///< the Vulkan backend's counting path (TRS)
+  lightsampler::Backend backend = lightsampler::Backend::cpu;
+  lightsampler::Method method = lightsampler::Method::trs;
+  lightsampler::Counting counting = lightsampler::Counting::automatic;  ///< the Vulkan counting path (TRS)
+  lightsampler::ScanOrder scan = lightsampler::ScanOrder::automatic;
+  lightsampler::Overlap overlap = lightsampler::Overlap::closed_form;
+  bool subgroup_reduction = true;  ///< the Vulkan ablation switches (VulkanFrameOptions)
+  bool inverse_cdf = false;
+  /// The ablation this variant is ("full", "no-subgroup-reduction", ...); empty outside them.
+  std::string ablation{};
   /// Backend and counting path as the tables show it: "cpu", "vk", "vk/auto", "vk/raster", "vk/compute", "vk/per-triangle".
   std::string engine() const;
 };
@@ -50,6 +56,20 @@ void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& set
 /// scan.
 void run_scan_experiment(const Inputs& inputs, const ExperimentSettings& settings,
                          lightsampler::Frame& frame, Recorder& recorder);
+
+/// Every mesh x map x TRS variant with each overlap formula, frames that count (the maps
+/// replaced before each) and stop after the scan: the counting pass is the comparison.
+void run_overlap_experiment(const Inputs& inputs, const ExperimentSettings& settings,
+                            lightsampler::Frame& frame, Recorder& recorder);
+
+/// The sampler as designed ("full") and each version that differs from it by one change, on
+/// every backend the variants use, through the counts as the sampling experiment; every frame
+/// counts, as with an animated texture (the paper's setting).
+void run_ablation_experiment(const Inputs& inputs, const ExperimentSettings& settings,
+                             lightsampler::Frame& frame, Recorder& recorder);
+
+/// The ablations that change something on `backend`, each named.
+std::vector<Variant> ablation_variants(lightsampler::Backend backend);
 
 /// Why a measured case's output cannot be right (samples far from the target, samples that gave
 /// up), or empty. A benchmark of wrong output measures nothing.

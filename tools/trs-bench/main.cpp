@@ -113,11 +113,11 @@ std::vector<Variant> make_variants(const CommandLine& cl) {
       const bool cpu_only = method == lightsampler::Method::naive || method == lightsampler::Method::frs;
       if (vulkan && cpu_only) continue;
       if (!vulkan || method != lightsampler::Method::trs) {
-        variants.push_back({backend, method, lightsampler::Counting::automatic});
+        variants.push_back({.backend = backend, .method = method, .counting = lightsampler::Counting::automatic});
         continue;
       }
       for (const auto& counting : cl.countings)
-        variants.push_back({backend, method, trs::kCountings.at(counting)});
+        variants.push_back({.backend = backend, .method = method, .counting = trs::kCountings.at(counting)});
     }
   }
   return variants;
@@ -141,6 +141,8 @@ int run(const CommandLine& cl) {
     print_speedups(std::cout, recorder.results());
   }
   if (contains(cl.experiments, "scan")) run_scan_experiment(inputs, settings, frame, recorder);
+  if (contains(cl.experiments, "overlap")) run_overlap_experiment(inputs, settings, frame, recorder);
+  if (contains(cl.experiments, "ablation")) run_ablation_experiment(inputs, settings, frame, recorder);
   if (!cl.csv.empty()) std::cout << "\nwrote " << cl.csv << "\n";
 
   const auto problems = sanity_problems(recorder.results());
@@ -198,9 +200,11 @@ int main(int argc, char** argv) {
   app.add_option("--device", cl.settings.vulkan_device,
                  "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE)");
   app.add_option("--experiments", cl.experiments,
-                 "sampling (time vs sample count), scan (scan orders)")
+                 "sampling (time vs sample count), scan (scan orders), overlap (the overlap "
+                 "formulas of TRS's counting), ablation (the sampler and one change at a time, "
+                 "through the counts)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"sampling", "scan"}))
+      ->check(CLI::IsMember({"sampling", "scan", "overlap", "ablation"}))
       ->capture_default_str();
   app.add_option("--threads", cl.settings.threads, "Worker threads; 0: every hardware thread")
       ->capture_default_str();

@@ -50,7 +50,8 @@ const std::vector<Column> kColumns = {
     {"mesh", -6},    {"tris", 8},     {"map", -6},     {"engine", -10}, {"method", -6},
     {"scan", -9},    {"target", 6},   {"samples", 10}, {"accept", 7},
     {"count ms", 9}, {"round ms", 9}, {"scan ms", 9},  {"distr ms", 9},
-    {"real ms", 9},  {"total ms", 9}, {"Msmp/s", 8},   {"runs", 4},     {"x floor", 7}};
+    {"real ms", 9},  {"total ms", 9}, {"Msmp/s", 8},   {"runs", 4},     {"x floor", 7},
+    {"variant", 0}};
 
 /// One table line: cells padded to their column (negative width: left-aligned); cells past the
 /// end of `cells` are left out, so a skipped case can end with a free-text note.
@@ -82,6 +83,8 @@ std::vector<std::string> table_cells(const CaseResult& r) {
   cells.push_back(m.realized() ? format("%.3g", m.samples_per_s() * 1e-6) : "-");
   cells.push_back(std::to_string(m.runs));
   cells.push_back(r.floor_ms ? format("%.3g", m.total_ms / *r.floor_ms) : "-");
+  // The ablation, or the overlap formula where it is what the rows compare.
+  cells.push_back(!r.variant.empty() ? r.variant : r.experiment == "overlap" ? r.overlap : "");
   return cells;
 }
 
@@ -116,7 +119,7 @@ std::string csv_text(const std::vector<CaseResult>& results) {
       "acceptance,exhausted";
   for (const auto& name : passes) text += "," + name + "_ms";
   text += ",total_ms,wall_ms,samples_per_s,threads,backend,engine,device,estimate_ms,refine,floor_ms,floor_multiple,"
-          "setup_ms,setup_bytes,coverage\n";
+          "setup_ms,setup_bytes,overlap,variant,coverage\n";
   for (const auto& r : results) {
     text += r.experiment + "," + csv_quote(r.mesh) + "," + std::to_string(r.triangles) + "," +
             csv_quote(r.map) + "," + map_size_cell(r) + "," + r.method + "," + r.scan + "," +
@@ -143,6 +146,7 @@ std::string csv_text(const std::vector<CaseResult>& results) {
     text += r.measured && r.measured->setup_bytes ? format("%.6g,%llu,", r.measured->setup_ms,
                                                            static_cast<unsigned long long>(r.measured->setup_bytes))
                                                   : ",,";
+    text += csv_quote(r.overlap) + ',' + csv_quote(r.variant) + ',';
     text += r.experiment == "floor" ? "\n" : format("%.9g\n", r.coverage);
   }
   return text;

@@ -24,12 +24,14 @@ struct CaseResult {
   double coverage = 0;  ///< the map's fraction of non-zero texels
   std::string method;  ///< "trs", "rs", "naive" or "frs" (lightsampler::to_string)
   std::string scan;    ///< the scan order used; "-" for plain rejection sampling
+  std::string overlap;  ///< the overlap formula of TRS's counting; "-" for the other methods
   double target = 0;
   std::string backend;
   std::string engine;  ///< backend and counting path, e.g. "cpu", "vk/raster"
   std::string device;
   unsigned threads = 0;
   float refine = 0;  ///< the sampler's Refinement::min_acceptance (0: none)
+  std::string variant;  ///< the ablation ("full", "no-subgroup-reduction", ...); empty outside them
   std::optional<Measurement> measured;  ///< empty: skipped
   double estimate_ms = 0;               ///< for a skipped case: its extrapolated frame time
   std::optional<double> floor_ms;       ///< the time to write as many samples on the backend

@@ -86,6 +86,7 @@ void generate(lightsampler::Sampler& sampler, const Options& options, lightsampl
   request.target_count = options.target_count;
   request.method = options.method;
   request.scan = options.scan;
+  request.overlap = options.overlap;
   request.vulkan.counting = options.counting;
   try {
     sampler.generate(request, frame);

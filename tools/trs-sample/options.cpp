@@ -14,7 +14,8 @@ namespace {
 const std::map<std::string, lightsampler::ScanOrder> kScans = {
     {"auto", lightsampler::ScanOrder::automatic},
     {"unordered", lightsampler::ScanOrder::unordered},
-    {"ordered", lightsampler::ScanOrder::ordered}};
+    {"ordered", lightsampler::ScanOrder::ordered},
+    {"lookback", lightsampler::ScanOrder::lookback}};
 const std::map<std::string, lightsampler::Addressing> kAddressing = {
     {"wrap", lightsampler::Addressing::wrap}, {"clamp", lightsampler::Addressing::clamp}};
 const std::map<std::string, MapEncoding> kEncodings = {
@@ -30,7 +31,8 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
       "trs-sample");
   Options options;
   double count = 0, scale = 1;
-  std::string method = "trs", backend = "auto", counting = "auto", scan = "auto", address = "wrap",
+  std::string method = "trs", backend = "auto", counting = "auto", scan = "auto", overlap = "closed-form",
+              address = "wrap",
               encoding = "auto";
   std::string out, stats;
 
@@ -67,8 +69,14 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
       ->check(CLI::IsMember(names(kCountings)))
       ->capture_default_str();
   add_refine_option(app, options.refinement);
-  app.add_option("--scan", scan, "cumulative sum of the per-triangle counts")
+  app.add_option("--scan", scan,
+                 "cumulative sum of the per-triangle counts (lookback: decoupled look-back, Vulkan only)")
       ->check(CLI::IsMember(names(kScans)))
+      ->capture_default_str();
+  app.add_option("--overlap", overlap,
+                 "triangle-texel overlap of TRS's counting: the closed form, polygon clipping, or the "
+                 "paper's Eq. 6 SDF approximation (biased; for experiments)")
+      ->check(CLI::IsMember(names(kOverlaps)))
       ->capture_default_str();
   app.add_option("--address", address, "what UVs outside [0, 1] read")
       ->check(CLI::IsMember(names(kAddressing)))
@@ -101,6 +109,7 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
   options.backend = kBackends.at(backend);
   options.counting = kCountings.at(counting);
   options.scan = kScans.at(scan);
+  options.overlap = kOverlaps.at(overlap);
   options.addressing = kAddressing.at(address);
   options.map_encoding = kEncodings.at(encoding);
   if (!out.empty()) options.out = out;

@@ -27,6 +27,7 @@ struct Options {
   lightsampler::Refinement refinement{.min_acceptance = lightsampler::kAutoMinAcceptance};  ///< --refine, auto by default
   lightsampler::Counting counting = lightsampler::Counting::automatic;
   lightsampler::ScanOrder scan = lightsampler::ScanOrder::automatic;
+  lightsampler::Overlap overlap = lightsampler::Overlap::closed_form;
   lightsampler::Addressing addressing = lightsampler::Addressing::wrap;
   MapEncoding map_encoding = MapEncoding::automatic;
   std::optional<std::filesystem::path> out;

@@ -56,6 +56,7 @@ nlohmann::ordered_json stats_json(const RunReport& run) {
                              ? nlohmann::ordered_json(*run.options.target_count)
                              : nlohmann::ordered_json(nullptr);
   json["scan"] = lightsampler::to_string(frame.scan_used);
+  json["overlap"] = lightsampler::to_string(run.options.overlap);
   json["counting"] = frame.counting_used ? lightsampler::to_string(*frame.counting_used) : "";
   json["expected_total"] = std::isfinite(frame.expected_total)
                                ? nlohmann::ordered_json(frame.expected_total)
@@ -83,6 +84,8 @@ void print_summary(std::ostream& out, const RunReport& run, std::optional<double
   if (threads(run) > 0) out << ", " << threads(run) << " threads";
   out << "), seed " << run.options.seed << ", scan " << lightsampler::to_string(frame.scan_used);
   if (frame.counting_used) out << ", counting " << lightsampler::to_string(*frame.counting_used);
+  if (run.options.overlap != lightsampler::Overlap::closed_form)
+    out << ", overlap " << lightsampler::to_string(run.options.overlap);
   out << "\n";
   out << "expected N̄   "
       << (std::isfinite(frame.expected_total) ? format("%.6g", frame.expected_total)

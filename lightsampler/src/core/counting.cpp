@@ -6,6 +6,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include "core/counting.h"
+#include "core/overlap_variants.h"
 #include "lightsampler/overlap.h"
 
 namespace lightsampler::core {
@@ -90,10 +91,23 @@ struct TexelSpaceTriangle {
   }
 };
 
+/// The triangle's overlap with a cell it touches but does not contain, by the chosen formula.
+template <Overlap kind>
+double boundary_overlap(const TexelSpaceTriangle& t, double xa, double ya, double xb, double yb) {
+  if constexpr (kind == Overlap::clipping) {
+    return clipped_overlap(t.x, t.y, xa, ya, xb, yb);
+  } else if constexpr (kind == Overlap::sdf) {
+    return sdf_overlap(t.x, t.y, xa, ya, xb, yb);
+  } else {
+    const double a[2] = {t.x[0], t.y[0]}, b[2] = {t.x[1], t.y[1]}, c[2] = {t.x[2], t.y[2]};
+    return rect_triangle_overlap(a, b, c, xa, ya, xb, yb);
+  }
+}
+
+template <Overlap kind>
 Accumulator integrate_rows(const TexelSpaceTriangle& t, const DensityMap& map, std::int64_t row0,
                            std::int64_t row1) {
   Accumulator acc;
-  const double a[2] = {t.x[0], t.y[0]}, b[2] = {t.x[1], t.y[1]}, c[2] = {t.x[2], t.y[2]};
   for (std::int64_t iy = row0; iy <= row1; ++iy) {
     double ya, yb;
     cell_bounds(iy, map.height, map.addressing, t.ymin, t.ymax, ya, yb);
@@ -103,9 +117,10 @@ Accumulator integrate_rows(const TexelSpaceTriangle& t, const DensityMap& map, s
     for (std::int64_t ix = cols.first; ix <= cols.last; ++ix) {
       double xa, xb;
       cell_bounds(ix, map.width, map.addressing, t.xmin, t.xmax, xa, xb);
-      // Interior cells (most cells of a large triangle) overlap fully: no formula needed.
+      // Interior cells (most cells of a large triangle) overlap fully: no formula needed (Eq. 6
+      // gives 1 there too: a unit cell inside has its centre at least 1/2 from every edge).
       const double overlap = t.contains(xa, ya, xb, yb) ? (xb - xa) * (yb - ya)
-                                                        : rect_triangle_overlap(a, b, c, xa, ya, xb, yb);
+                                                        : boundary_overlap<kind>(t, xa, ya, xb, yb);
       if (!(overlap > 0)) continue;
       const float d = cell_density(map, ix, iy);
       acc.sum += double(d) * overlap;
@@ -115,10 +130,20 @@ Accumulator integrate_rows(const TexelSpaceTriangle& t, const DensityMap& map, s
   return acc;
 }
 
+Accumulator integrate_rows(Overlap overlap, const TexelSpaceTriangle& t, const DensityMap& map,
+                           std::int64_t row0, std::int64_t row1) {
+  switch (overlap) {
+    case Overlap::clipping: return integrate_rows<Overlap::clipping>(t, map, row0, row1);
+    case Overlap::sdf: return integrate_rows<Overlap::sdf>(t, map, row0, row1);
+    case Overlap::closed_form: break;
+  }
+  return integrate_rows<Overlap::closed_form>(t, map, row0, row1);
+}
+
 }  // namespace
 
 TriangleIntegral integrate_triangle(const TriangleRecord& triangle, const TexelTriangle& texel,
-                                    std::span<const DensityMap> maps) {
+                                    std::span<const DensityMap> maps, Overlap overlap) {
   if (triangle.map == kNoMap || !(triangle.area > 0)) return {0.0, 0.0f};
   const DensityMap& map = maps[triangle.map];
   if (texel.edge1[0] == 0 && texel.edge1[1] == 0 && texel.edge2[0] == 0 && texel.edge2[1] == 0) {
@@ -147,15 +172,15 @@ TriangleIntegral integrate_triangle(const TriangleRecord& triangle, const TexelT
   }
   const CellRange rows = cell_range(t.ymin, t.ymax, map.height, map.addressing);
   const CellRange cols = cell_range(t.xmin, t.xmax, map.width, map.addressing);
-  if (rows.first == rows.last && cols.first == cols.last) {
-    // Inside one cell: the overlap is the whole triangle, exactly.
+  if (rows.first == rows.last && cols.first == cols.last && overlap != Overlap::sdf) {
+    // Inside one cell: the overlap is the whole triangle, exactly (Eq. 6 approximates it too).
     const float d = cell_density(map, cols.first, rows.first);
     return {double(d) * triangle.area, d};
   }
   const std::int64_t cells = (rows.last - rows.first + 1) * (cols.last - cols.first + 1);
   Accumulator acc;
   if (cells <= kCellsPerTask) {
-    acc = integrate_rows(t, map, rows.first, rows.last);
+    acc = integrate_rows(overlap, t, map, rows.first, rows.last);
   } else {
     const std::int64_t rows_per_task =
         std::max<std::int64_t>(1, kCellsPerTask / (cols.last - cols.first + 1));
@@ -163,7 +188,7 @@ TriangleIntegral integrate_triangle(const TriangleRecord& triangle, const TexelT
     acc = tbb::parallel_deterministic_reduce(
         tbb::blocked_range<std::int64_t>(rows.first, rows.last + 1, rows_per_task), Accumulator{},
         [&](const tbb::blocked_range<std::int64_t>& r, Accumulator a) {
-          a.add(integrate_rows(t, map, r.begin(), r.end() - 1));
+          a.add(integrate_rows(overlap, t, map, r.begin(), r.end() - 1));
           return a;
         },
         [](Accumulator a, const Accumulator& b) {
@@ -178,14 +203,14 @@ namespace {
 
 template <class Selected>
 double count_selected(std::span<const TriangleRecord> triangles, std::span<const TexelTriangle> texel_triangles,
-                      std::span<const DensityMap> maps, const Selected& selected, Buffer<double>& expected_counts,
-                      Buffer<float>& max_density) {
+                      std::span<const DensityMap> maps, const Selected& selected, Overlap overlap,
+                      Buffer<double>& expected_counts, Buffer<float>& max_density) {
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, triangles.size(), 256),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t i = r.begin(); i != r.end(); ++i) {
                         if (!selected(triangles[i])) continue;
                         const TriangleIntegral integral =
-                            integrate_triangle(triangles[i], texel_triangles[i], maps);
+                            integrate_triangle(triangles[i], texel_triangles[i], maps, overlap);
                         expected_counts[i] = integral.expected;
                         max_density[i] = integral.max_density;
                       }
@@ -197,19 +222,19 @@ double count_selected(std::span<const TriangleRecord> triangles, std::span<const
 
 double count(std::span<const TriangleRecord> triangles,
              std::span<const TexelTriangle> texel_triangles, std::span<const DensityMap> maps,
-             Buffer<double>& expected_counts, Buffer<float>& max_density) {
+             Buffer<double>& expected_counts, Buffer<float>& max_density, Overlap overlap) {
   expected_counts.resize(triangles.size());
   max_density.resize(triangles.size());
   return count_selected(triangles, texel_triangles, maps, [](const TriangleRecord&) { return true; },
-                        expected_counts, max_density);
+                        overlap, expected_counts, max_density);
 }
 
 double recount(std::span<const TriangleRecord> triangles, std::span<const TexelTriangle> texel_triangles,
                std::span<const DensityMap> maps, std::span<const std::uint8_t> stale,
-               Buffer<double>& expected_counts, Buffer<float>& max_density) {
+               Buffer<double>& expected_counts, Buffer<float>& max_density, Overlap overlap) {
   return count_selected(triangles, texel_triangles, maps,
                         [&](const TriangleRecord& t) { return t.map < stale.size() && stale[t.map] != 0; },
-                        expected_counts, max_density);
+                        overlap, expected_counts, max_density);
 }
 
 double sum(std::span<const double> values) {

@@ -78,9 +78,6 @@ class CpuSampler final : public Sampler {
   void generate(const FrameRequest& request, Frame& frame) override {
     if (request.scan == ScanOrder::lookback)
       throw std::invalid_argument("the lookback scan runs on the Vulkan backend only");
-    if (request.overlap != Overlap::closed_form)
-      throw std::invalid_argument(std::string("the ") + to_string(request.overlap) +
-                                  " overlap is not available on the CPU backend yet");
     core::begin_frame(request, frame);
     Stopwatch total, pass;
     arena_.execute([&] {
@@ -95,24 +92,32 @@ class CpuSampler final : public Sampler {
   }
 
  private:
+  /// How the counts in hand were made: naive stratification's clipping (every triangle at once),
+  /// or TRS's counting with one overlap formula.
+  struct CountingRule {
+    bool naive;
+    Overlap overlap;
+    bool operator==(const CountingRule&) const = default;
+  };
+
   /// N-bar_T and D_T^max change only through update_map: a frame recounts the triangles of the
-  /// maps replaced since the last count, and copies the rest. Naive stratification counts by
-  /// clipping, every triangle at once; a change between it and the closed form counts anew.
-  void counting_pass(Frame& frame, Stopwatch& pass, bool naive = false) {
+  /// maps replaced since the last count, and copies the rest. A frame asking for another rule
+  /// than the counts in hand were made by counts anew.
+  void counting_pass(Frame& frame, Stopwatch& pass, CountingRule rule) {
     const bool stale = std::find(stale_.begin(), stale_.end(), 1) != stale_.end();
-    const bool recount = !counted_ || stale || naive != counted_naive_;
+    const bool same_rule = counted_ == rule;
+    const bool recount = !same_rule || stale;
     if (recount) {
-      if (naive)
+      if (rule.naive)
         expected_total_ = cpu::naive_count(scene_.triangles(), scene_.texel_triangles(), scene_.maps(),
                                            expected_counts_, max_density_);
-      else if (counted_ && !counted_naive_)
+      else if (same_rule)
         expected_total_ = core::recount(scene_.triangles(), scene_.texel_triangles(), scene_.maps(), stale_,
-                                        expected_counts_, max_density_);
+                                        expected_counts_, max_density_, rule.overlap);
       else
         expected_total_ = core::count(scene_.triangles(), scene_.texel_triangles(), scene_.maps(),
-                                      expected_counts_, max_density_);
-      counted_ = true;
-      counted_naive_ = naive;
+                                      expected_counts_, max_density_, rule.overlap);
+      counted_ = rule;
       std::fill(stale_.begin(), stale_.end(), 0);
     }
     core::validate_expected_total(expected_total_);
@@ -133,7 +138,7 @@ class CpuSampler final : public Sampler {
   /// texel piece by texel piece); rounding and the scan are the same.
   void generate_stratified(const FrameRequest& request, Frame& frame, Stopwatch& pass) {
     const bool naive = request.method == Method::naive;
-    counting_pass(frame, pass, naive);
+    counting_pass(frame, pass, {naive, naive ? Overlap::closed_form : request.overlap});
 
     const double expected = frame.expected_total;
     const double scale = request.target_count ? (expected > 0 ? *request.target_count / expected : 0) : 1;
@@ -179,7 +184,7 @@ class CpuSampler final : public Sampler {
     if (request.target_count) {
       target = *request.target_count;
     } else {
-      counting_pass(frame, pass);  // Algorithm 1 needs N: without a target it is N-bar
+      counting_pass(frame, pass, {false, Overlap::closed_form});  // Algorithm 1 needs N: without a target it is N-bar
       target = frame.expected_total;
     }
     const float bound = cpu::rejection_distribution(scene_.triangles(), scene_.maps(), area_cdf_, area_guide_);
@@ -227,8 +232,7 @@ class CpuSampler final : public Sampler {
   tbb::task_arena arena_;
   std::string device_;
   core::HostScene scene_;
-  bool counted_ = false;
-  bool counted_naive_ = false;  ///< the kept counts are naive stratification's
+  std::optional<CountingRule> counted_;  ///< none before the first count
   std::vector<std::uint8_t> stale_;  ///< per map: replaced since the last count
   Buffer<double> expected_counts_;
   Buffer<float> max_density_;
