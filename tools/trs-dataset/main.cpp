@@ -127,6 +127,9 @@ int main(int argc, char** argv) {
     if (!cl.generate_mesh.empty()) trs_bench::parse_mesh_spec(cl.generate_mesh);
     if (!cl.generate_map.empty()) trs_bench::parse_map_spec(cl.generate_map);
     if (cl.emissive && !is_gltf(cl.mesh)) throw CLI::ValidationError("--emissive", "needs a glTF --mesh");
+    if (cl.mesh.empty() && cl.generate_mesh.empty() && cl.density.empty() && cl.generate_map.empty())
+      throw CLI::ValidationError("nothing to write: give a mesh (--mesh, --generate-mesh), a map "
+                                 "(--density, --emissive, --generate-map) or both");
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const std::exception& e) {  // CLI::ParseError, or a bad generator spec
