@@ -7,13 +7,14 @@
 
 namespace trs {
 
-MeshData load_gltf(const std::filesystem::path& file) {
+MeshData load_gltf(const std::filesystem::path& file, std::optional<int> material) {
   const gltf::Document document(file);
   MeshData mesh;
   mesh.file = file;
   mesh.file_uv_origin = UvOrigin::top;
   document.for_each_triangle_primitive([&](const tinygltf::Primitive& primitive,
                                            const glm::dmat4& world, const std::string& what) {
+    if (material && primitive.material != *material) return;
     const std::vector<glm::vec3> positions = document.positions(primitive, what);
     const auto uvs = document.vec2_attribute(primitive, "TEXCOORD_0", positions.size(), what);
     if (!uvs) document.fail(what + " has no TEXCOORD_0 (UVs are required)");

@@ -64,6 +64,15 @@ MeshData load_mesh(const std::filesystem::path& file) {
   return mesh;
 }
 
+MeshData load_gltf_material(const std::filesystem::path& file, int material) {
+  check_input_file(file);
+  MeshData mesh = load_gltf(file, material);
+  if (mesh.indices.empty())
+    throw FileError(file, "no triangle uses material " + std::to_string(material));
+  check_mesh(mesh);
+  return mesh;
+}
+
 lightsampler::Float2 to_file_uv(lightsampler::Float2 uv, UvOrigin origin) {
   return origin == UvOrigin::top ? uv : lightsampler::Float2{uv.x, 1.0f - uv.y};
 }

@@ -106,7 +106,9 @@ CaseResult describe_case(const char* experiment, const Mesh& mesh, const Density
   r.mesh = mesh.name;
   r.triangles = mesh.triangle_count();
   r.map = map.name;
-  r.map_size = map.size;
+  r.map_width = map.width;
+  r.map_height = map.height;
+  r.coverage = map.coverage;
   r.method = lightsampler::to_string(request.method);
   r.scan = request.method == Method::trs ? lightsampler::to_string(request.scan) : "-";
   r.overlap = request.method == Method::trs ? lightsampler::to_string(request.overlap) : "-";

@@ -41,10 +41,11 @@ void apply_quick(const CLI::App& app, CommandLine& cl) {
   if (!app.count("--scan-target")) cl.settings.scan_target = 1e4;
 }
 
-/// CLI11 validator: empty when `text` is a mesh spec, else why not.
-std::string check_mesh_spec(const std::string& text) {
+/// CLI11 validator: empty when `parse(text)` succeeds, else why not.
+template <auto parse>
+std::string check_spec(const std::string& text) {
   try {
-    parse_mesh_spec(text);
+    parse(text);
     return {};
   } catch (const std::invalid_argument& e) {
     return e.what();
@@ -69,11 +70,11 @@ Inputs generate_inputs(const CommandLine& cl) {
     std::cout << "mesh " << spec << ": " << inputs.meshes.back().name << " with "
               << inputs.meshes.back().triangle_count() << " triangles (" << s << " s)\n";
   }
-  for (const auto& name : cl.maps) {
-    const double s =
-        seconds_of([&] { inputs.maps.push_back(make_map(parse_map_kind(name), cl.map_size)); });
-    std::cout << "map " << name << ": " << cl.map_size << "x" << cl.map_size << ", "
-              << 100 * coverage(inputs.maps.back()) << "% of texels non-zero (" << s << " s)\n";
+  for (const auto& spec : cl.maps) {
+    const double s = seconds_of([&] { inputs.maps.push_back(make_map(parse_map_spec(spec), cl.map_size)); });
+    const DensityMap& map = inputs.maps.back();
+    std::cout << "map " << spec << ": " << map.width << "x" << map.height << ", "
+              << 100 * map.coverage << "% of texels non-zero (" << s << " s)\n";
   }
   return inputs;
 }
@@ -161,15 +162,19 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--meshes", cl.meshes,
-                 "Meshes as KIND:TRIANGLES, KIND grid or sphere, e.g. grid:100k,sphere:2M")
+                 "Meshes as KIND:TRIANGLES, KIND grid, sphere or torus, e.g. grid:100k,sphere:2M; "
+                 "or file:PATH, the mesh of a dataset file (trs-dataset)")
       ->delimiter(',')
-      ->check(check_mesh_spec)
+      ->check(check_spec<parse_mesh_spec>)
       ->capture_default_str();
-  app.add_option("--maps", cl.maps, "Density maps")
+  app.add_option("--maps", cl.maps,
+                 "Density maps: " + map_kind_names() +
+                     " (threshold:F: the fractal's brightest fraction F of texels; file:PATH: the "
+                     "map of a dataset file)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"smooth", "sparse", "hifreq"}))
+      ->check(check_spec<parse_map_spec>)
       ->capture_default_str();
-  app.add_option("--map-size", cl.map_size, "Width and height of the density maps, texels")
+  app.add_option("--map-size", cl.map_size, "Width and height of the generated density maps, texels")
       ->check(CLI::Range(1u, 1u << 15))
       ->capture_default_str();
   app.add_option("--methods", cl.methods,

@@ -5,6 +5,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "dataset_file.h"
+
 namespace trs_bench {
 
 namespace {
@@ -34,12 +36,22 @@ MeshSpec parse_mesh_spec(std::string_view text) {
   const auto colon = text.find(':');
   const std::string_view kind = text.substr(0, colon);
   MeshSpec spec;
+  if (kind == "file") {
+    if (colon == std::string_view::npos || colon + 1 == text.size())
+      throw std::invalid_argument("mesh '" + std::string(text) + "': expected file:PATH");
+    spec.kind = MeshKind::file;
+    spec.file = std::string(text.substr(colon + 1));
+    return spec;
+  }
   if (kind == "grid") {
     spec.kind = MeshKind::grid;
   } else if (kind == "sphere") {
     spec.kind = MeshKind::sphere;
+  } else if (kind == "torus") {
+    spec.kind = MeshKind::torus;
   } else {
-    throw std::invalid_argument("mesh '" + std::string(text) + "': kind must be grid or sphere");
+    throw std::invalid_argument("mesh '" + std::string(text) +
+                                "': kind must be grid, sphere, torus or file");
   }
   if (colon == std::string_view::npos)
     throw std::invalid_argument("mesh '" + std::string(text) +
@@ -121,12 +133,52 @@ Mesh make_uv_sphere(std::uint64_t triangles) {
   return mesh;
 }
 
+Mesh make_displaced_torus(std::uint64_t triangles) {
+  // 4 charts of n x n quads, two triangles each; a chart's vertices are its own (UV seams).
+  const auto n = std::max<std::uint32_t>(1, std::uint32_t(std::lround(std::sqrt(triangles / 8.0))));
+  constexpr double kMajor = 1, kMinor = 0.35, kGap = 0.02;
+  Mesh mesh;
+  mesh.name = "torus";
+  for (std::uint32_t chart = 0; chart < 4; ++chart) {
+    const auto base = std::uint32_t(mesh.positions.size() / 3);
+    for (std::uint32_t j = 0; j <= n; ++j) {
+      for (std::uint32_t i = 0; i <= n; ++i) {
+        const double s = double(i) / n, t = double(j) / n;  // along the ring, around the tube
+        const double phi = kPi / 2 * (chart + s), theta = 2 * kPi * t;
+        const double r = kMinor * (1 + 0.15 * std::sin(5 * phi) * std::sin(3 * theta));
+        const double ring = kMajor + r * std::cos(theta);
+        mesh.positions.insert(mesh.positions.end(), {float(ring * std::cos(phi)),
+                                                     float(r * std::sin(theta)),
+                                                     float(ring * std::sin(phi))});
+        // Chart 0 as it is, 1 turned, 2 mirrored, 3 turned and mirrored; each in its atlas tile.
+        double a = chart % 2 ? t : s, b = chart % 2 ? s : t;
+        if (chart >= 2) a = 1 - a;
+        const double u = 0.5 * (chart % 2) + kGap + (0.5 - 2 * kGap) * a;
+        const double v = 0.5 * (chart / 2) + kGap + (0.5 - 2 * kGap) * b;
+        mesh.uvs.insert(mesh.uvs.end(), {float(u), float(v)});
+      }
+    }
+    for (std::uint32_t j = 0; j < n; ++j) {
+      for (std::uint32_t i = 0; i < n; ++i) {
+        const std::uint32_t v00 = base + j * (n + 1) + i, v10 = v00 + 1, v01 = v00 + n + 1,
+                            v11 = v01 + 1;
+        mesh.indices.insert(mesh.indices.end(), {v00, v10, v11, v00, v11, v01});
+      }
+    }
+  }
+  return mesh;
+}
+
 Mesh make_mesh(const MeshSpec& spec) {
   switch (spec.kind) {
     case MeshKind::grid:
       return make_warped_grid(spec.triangles);
     case MeshKind::sphere:
       return make_uv_sphere(spec.triangles);
+    case MeshKind::torus:
+      return make_displaced_torus(spec.triangles);
+    case MeshKind::file:
+      return read_dataset_mesh(spec.file);
   }
   throw std::logic_error("unknown mesh kind");
 }

@@ -95,6 +95,12 @@ std::string csv_quote(const std::string& text) {
   return quoted + "\"";
 }
 
+/// A square map's width, as the column always said; WxH for a map from a file that is not square.
+std::string map_size_cell(const CaseResult& r) {
+  if (r.map_width == r.map_height) return std::to_string(r.map_width);
+  return std::to_string(r.map_width) + "x" + std::to_string(r.map_height);
+}
+
 /// Pass names of all results: the known ones first, then any others in the order they appear.
 std::vector<std::string> csv_pass_columns(const std::vector<CaseResult>& results) {
   std::vector<std::string> names = kKnownPasses;
@@ -113,10 +119,10 @@ std::string csv_text(const std::vector<CaseResult>& results) {
       "acceptance,exhausted";
   for (const auto& name : passes) text += "," + name + "_ms";
   text += ",total_ms,wall_ms,samples_per_s,threads,backend,engine,device,estimate_ms,refine,floor_ms,floor_multiple,"
-          "setup_ms,setup_bytes,overlap,variant\n";
+          "setup_ms,setup_bytes,overlap,variant,coverage\n";
   for (const auto& r : results) {
-    text += r.experiment + "," + r.mesh + "," + std::to_string(r.triangles) + "," + r.map + "," +
-            std::to_string(r.map_size) + "," + r.method + "," + r.scan + "," +
+    text += r.experiment + "," + csv_quote(r.mesh) + "," + std::to_string(r.triangles) + "," +
+            csv_quote(r.map) + "," + map_size_cell(r) + "," + r.method + "," + r.scan + "," +
             format("%.9g", r.target) + "," + (r.measured ? "ok" : "skipped");
     if (r.measured) {
       const Measurement& m = *r.measured;
@@ -140,7 +146,8 @@ std::string csv_text(const std::vector<CaseResult>& results) {
     text += r.measured && r.measured->setup_bytes ? format("%.6g,%llu,", r.measured->setup_ms,
                                                            static_cast<unsigned long long>(r.measured->setup_bytes))
                                                   : ",,";
-    text += csv_quote(r.overlap) + ',' + csv_quote(r.variant) + '\n';
+    text += csv_quote(r.overlap) + ',' + csv_quote(r.variant) + ',';
+    text += r.experiment == "floor" ? "\n" : format("%.9g\n", r.coverage);
   }
   return text;
 }

@@ -20,7 +20,8 @@ struct CaseResult {
   std::string mesh;
   std::uint64_t triangles = 0;
   std::string map;
-  std::uint32_t map_size = 0;
+  std::uint32_t map_width = 0, map_height = 0;
+  double coverage = 0;  ///< the map's fraction of non-zero texels
   std::string method;  ///< "trs", "rs", "naive" or "frs" (lightsampler::to_string)
   std::string scan;    ///< the scan order used; "-" for plain rejection sampling
   std::string overlap;  ///< the overlap formula of TRS's counting; "-" for the other methods

@@ -32,6 +32,11 @@ struct MeshData {
 /// the extension. Throws FileError naming the file and the problem.
 MeshData load_mesh(const std::filesystem::path& file);
 
+/// The triangles of a glTF file's primitives that use material `material` (glTF's index), as
+/// load_mesh loads them: one emitter's triangles. Throws FileError naming the file, also when
+/// no triangle uses it.
+MeshData load_gltf_material(const std::filesystem::path& file, int material);
+
 /// A UV of the library's convention, as a file of convention `origin` states it.
 lightsampler::Float2 to_file_uv(lightsampler::Float2 uv, UvOrigin origin);
 
