@@ -245,6 +245,17 @@ TEST_F(RenderCliTest, SettingsFileAndCommandLine) {
   EXPECT_EQ(stats["settings"]["spp"], 3);  // still from the file
 }
 
+// A key that is no long option (a misspelt one) would change nothing without a word: refused,
+// naming the file and the key.
+TEST_F(RenderCliTest, SettingsFileWithAnUnknownKeyIsRefused) {
+  const fs::path settings = write_text("render.toml", "width = 8\nsamples = 64\n");
+  const RunResult result = run({kScene.string(), "--settings", settings.string(), "--out", file("out.exr").string()});
+  EXPECT_EQ(result.status, 2) << result.err;
+  EXPECT_NE(result.err.find("trs-render: error: " + settings.string()), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("samples"), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(file("out.exr")));
+}
+
 // 3. The image depends on the seed, not on the number of threads.
 TEST_F(RenderCliTest, SameSeedSameImageWithAnyThreadCount) {
   for (const std::string& strategy : kStrategies) {

@@ -37,6 +37,8 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
 
   app.set_config("--settings", "", "settings file of `key = value` lines (TOML) with the long "
                                    "option names, e.g. spp = 64; the command line wins");
+  // A misspelt key would otherwise be dropped without a word, and the render not be the one asked for.
+  app.allow_config_extras(CLI::config_extras_mode::error);
   app.add_option("SCENE", options.scene, "glTF 2.0 scene (.gltf, .glb)")->required();
   // An option given twice takes its last value, so that a script can override its own defaults.
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
@@ -95,6 +97,11 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::ConfigError& e) {
+    // CLI11 names the key, not the file it came from.
+    std::cerr << "trs-render: error: " << app.get_option("--settings")->as<std::string>() << ": " << e.what()
+              << " (settings are the long option names)\n";
+    return kUsageError;
   } catch (const CLI::ParseError& e) {
     std::cerr << "trs-render: error: " << e.what() << "\nRun with --help for more information.\n";
     return kUsageError;
