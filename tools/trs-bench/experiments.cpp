@@ -157,14 +157,13 @@ struct SeriesTime {
 
 namespace {
 
-/// Every mesh x map x count x variant, as rows of `experiment`. A case whose frame time,
+/// Every mesh x map x count x variant, as rows of `experiment` in sections named `title`. A case whose frame time,
 /// extrapolated from the previous count of its series, exceeds the budget is skipped.
-void run_count_series(const char* experiment, const Inputs& inputs, const ExperimentSettings& settings,
+void run_count_series(const char* experiment, const char* title, const Inputs& inputs, const ExperimentSettings& settings,
                       const std::map<std::pair<Backend, double>, double>& floors, lightsampler::Frame& frame,
                       Recorder& recorder) {
   for (const Mesh& mesh : inputs.meshes) {
-    recorder.begin_section(std::string(experiment == std::string("sampling") ? "Sample count" : "Ablation") +
-                           ": " + mesh.name + ", " + std::to_string(mesh.triangle_count()) + " triangles");
+    recorder.begin_section(std::string(title) + ": " + mesh.name + ", " + std::to_string(mesh.triangle_count()) + " triangles");
     for (const DensityMap& map : inputs.maps) {
       Samplers samplers(mesh, map, settings);
       std::vector<SeriesTime> series(settings.variants.size());
@@ -199,7 +198,7 @@ void run_count_series(const char* experiment, const Inputs& inputs, const Experi
 
 void run_sampling_experiment(const Inputs& inputs, const ExperimentSettings& settings,
                              lightsampler::Frame& frame, Recorder& recorder) {
-  run_count_series("sampling", inputs, settings, run_floors(settings, recorder), frame, recorder);
+  run_count_series("sampling", "Sample count", inputs, settings, run_floors(settings, recorder), frame, recorder);
 }
 
 std::vector<Variant> ablation_variants(Backend backend) {
@@ -235,7 +234,7 @@ void run_ablation_experiment(const Inputs& inputs, const ExperimentSettings& set
   for (Backend backend : backends_of(settings.variants))
     for (const Variant& v : ablation_variants(backend)) ablation.variants.push_back(v);
   ablation.measure.recount = true;
-  run_count_series("ablation", inputs, ablation, {}, frame, recorder);
+  run_count_series("ablation", "Ablation", inputs, ablation, {}, frame, recorder);
 }
 
 void run_overlap_experiment(const Inputs& inputs, const ExperimentSettings& settings,
