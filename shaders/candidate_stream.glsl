@@ -10,17 +10,13 @@
 
 #include "workgroup.glsl"
 
-// Candidate and slot tallies of one invocation, summed over the segments it walks.
-struct WalkTally {
-  uint64_t candidates;
-  uint64_t exhausted;
-};
-
 // Fills `slots` slots of segment `segment`, samples `first` on of the buffer at `samples`. Call with the whole subgroup,
 // every argument subgroup-uniform (the loop's trip count is). Each lane draws candidate
 // j + lane; a candidate fills a slot when accepted, or when it is the max_tries-th rejection in
-// a row (counted across rounds by `rejections`), as core::SegmentFill::take.
-void walk_segment(uint64_t samples, uint64_t segment, uint64_t first, uint slots, uint max_tries,
+// a row (counted across rounds by `rejections`) and the limit does not `stop`, as
+// core::SegmentFill::take. Returns the slots filled: fewer than `slots` when the limit stopped
+// the walk (subgroup-uniform).
+uint walk_segment(uint64_t samples, uint64_t segment, uint64_t first, uint slots, uint max_tries, bool stop,
                   inout WalkTally tally) {
   // Lanes numbered among the active ones, in invocation order (the order of the scans below).
   uint lane = subgroupExclusiveAdd(1u);
@@ -35,15 +31,19 @@ void walk_segment(uint64_t samples, uint64_t segment, uint64_t first, uint slots
     int last_accepted = subgroupInclusiveMax(accepted ? int(lane) : -1);
     uint64_t run = last_accepted >= 0 ? uint64_t(lane - uint(last_accepted))
                                       : rejections + uint64_t(lane) + 1ul;
-    bool fills = accepted || run % uint64_t(max_tries) == 0ul;
+    // The first lane at the limit stops the walk, if the limit stops; the lanes after it do not count.
+    uint stop_lane = stop ? subgroupMin(run >= uint64_t(max_tries) ? lane : width) : width;
+    bool fills = lane < stop_lane && (accepted || (!stop && run % uint64_t(max_tries) == 0ul));
     uint before = subgroupExclusiveAdd(fills ? 1u : 0u);
-    bool drawn = before < slots - filled;  // the segment was not yet full at this candidate
+    bool drawn = before < slots - filled && lane <= stop_lane;  // the segment was not yet full nor stopped
     if (fills && drawn) Samples(samples + (first + uint64_t(filled + before)) * uint64_t(kSampleBytes)).v[0] = candidate;
     tally.candidates += drawn ? 1ul : 0ul;
     tally.exhausted += fills && drawn && !accepted ? 1ul : 0ul;
     filled += min(subgroupAdd(fills ? 1u : 0u), slots - filled);
+    if (stop_lane < width) break;
     rejections = subgroupMax(lane == width - 1u ? run % uint64_t(max_tries) : 0ul);
   }
+  return filled;
 }
 
 // The whole output as one run of segments, as if one element held every sample (plain rejection
@@ -53,13 +53,13 @@ void walk_output(Totals totals, uint64_t samples, uint max_tries) {
   uint64_t n = totals.t.realized;
   uint64_t segments = (n + uint64_t(kSegmentSlots) - 1ul) / uint64_t(kSegmentSlots);
   uint64_t stride = uint64_t(gl_NumWorkGroups.x) * uint64_t(gl_NumSubgroups);
-  WalkTally tally = WalkTally(0ul, 0ul);
+  WalkTally tally = WalkTally(0ul, 0ul, 0ul);
   for (uint64_t s = uint64_t(gl_WorkGroupID.x) * uint64_t(gl_NumSubgroups) + uint64_t(gl_SubgroupID); s < segments;
        s += stride) {
     uint64_t first = s * uint64_t(kSegmentSlots);
-    walk_segment(samples, s, first, uint(min(uint64_t(kSegmentSlots), n - first)), max_tries, tally);
+    walk_segment(samples, s, first, uint(min(uint64_t(kSegmentSlots), n - first)), max_tries, false, tally);
   }
-  count_tries(totals, tally.candidates, tally.exhausted);
+  count_tries(totals, tally);
 }
 
 #endif

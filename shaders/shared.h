@@ -68,6 +68,7 @@ struct FrameTotals {
   uint64_t exhausted;
   uint64_t cells;        // candidate cells of the compute counting path
   uint64_t realized;     // samples realization writes: N, or 0 when N exceeds the sample buffer
+  uint64_t exact;        // TRS: slots drawn exactly after rejection stopped
 };
 
 /// Addresses of the resident and per-frame buffers; every pass takes the ones it needs.
@@ -145,6 +146,9 @@ struct RealizationPush {
   uint key0, key1;
   uint triangle_count;
   uint max_tries;
+  uint exact_key0, exact_key1;  // TRS: Philox key of the exact draws
+  uint exact_after;   // TRS: rejections in a row that stop a segment's walk (0: never)
+  uint pad0;
 };
 
 LS_CONST uint kPlanTrs = 0u;        // N already in the totals: from the rounding pass, or (FRS) the host

@@ -41,13 +41,24 @@ float workgroup_max(float value) {
   return largest;
 }
 
-// Adds an invocation's candidates and exhausted samples to the frame's totals.
-void count_tries(Totals totals, uint64_t tries, uint64_t gave_up) {
-  tries = workgroup_add(tries);
-  gave_up = workgroup_add(gave_up);
+// An invocation's tries and slots of a realization pass: the candidates (or attempts) it tried,
+// its slots filled after max_tries rejections in a row, and its slots drawn exactly after
+// TRS's rejection stopped.
+struct WalkTally {
+  uint64_t candidates;
+  uint64_t exhausted;
+  uint64_t exact;
+};
+
+// Adds an invocation's tally to the frame's totals.
+void count_tries(Totals totals, WalkTally tally) {
+  uint64_t candidates = workgroup_add(tally.candidates);
+  uint64_t exhausted = workgroup_add(tally.exhausted);
+  uint64_t exact = workgroup_add(tally.exact);
   if (gl_LocalInvocationIndex == 0u) {
-    if (tries > 0ul) atomicAdd(totals.t.candidates, tries);
-    if (gave_up > 0ul) atomicAdd(totals.t.exhausted, gave_up);
+    if (candidates > 0ul) atomicAdd(totals.t.candidates, candidates);
+    if (exhausted > 0ul) atomicAdd(totals.t.exhausted, exhausted);
+    if (exact > 0ul) atomicAdd(totals.t.exact, exact);
   }
 }
 

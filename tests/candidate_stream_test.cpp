@@ -9,6 +9,7 @@
 
 #include "core/area_pick.h"
 #include "core/candidate_stream.h"
+#include "core/piece_draw.h"
 #include "cpu/candidates.h"
 #include "cpu/passes.h"
 #include "lightsampler/triangle_map.h"
@@ -33,27 +34,37 @@ ScalarCandidate scalar_candidate(std::uint32_t tri, std::uint64_t segment, std::
 }
 
 /// Realization as the stream's definition states it: each triangle's segments in turn, each
-/// walked one candidate at a time.
+/// walked one candidate at a time, the rest of a stopped segment drawn exactly.
 cpu::RealizationResult reference_realize(std::span<const core::TexelTriangle> tris, const core::DensityMap& map,
                                          std::span<const float> max_density, std::span<const std::uint64_t> cdf,
-                                         std::span<const std::uint32_t> inverse, PhiloxKey key,
-                                         std::uint32_t max_tries, std::vector<Sample>& out) {
-  cpu::RealizationResult r{0, 0};
+                                         std::span<const std::uint32_t> inverse, cpu::RealizationKeys keys,
+                                         core::TrsTries tries, std::vector<Sample>& out) {
+  cpu::RealizationResult r;
   out.assign(cdf.empty() ? 0 : cdf.back(), Sample{});
   for (std::size_t p = 0; p < cdf.size(); ++p) {
     const std::uint32_t tri = inverse[p];
     const std::uint64_t start = p == 0 ? 0 : cdf[p - 1];
     for (std::uint64_t s = 0; start + s * core::kSegmentSlots < cdf[p]; ++s) {
-      const std::uint64_t first = start + s * core::kSegmentSlots;
-      core::SegmentFill fill(std::min(core::kSegmentSlots, cdf[p] - first), max_tries);
+      const std::uint64_t first = start + s * core::kSegmentSlots, slots = std::min(core::kSegmentSlots, cdf[p] - first);
+      core::SegmentFill fill(slots, tries.rejection());
       for (std::uint64_t j = 0; !fill.done(); ++j) {
-        const ScalarCandidate c = scalar_candidate(tri, s, j, key);
+        const ScalarCandidate c = scalar_candidate(tri, s, j, keys.candidates);
         const auto [x, y] = core::texel_space_point(tris[tri], c.b.b1, c.b.b2);
         if (fill.take(c.accept * max_density[tri] < core::point_density(map, x, y)))
           out[first + fill.filled() - 1] = {tri, c.b.b1, c.b.b2};
       }
       r.candidates += fill.tries();
       r.exhausted += fill.exhausted();
+      core::PieceStrata strata;
+      strata.build(tris[tri], {&map, 1});
+      for (std::uint64_t slot = fill.filled(); slot < slots; ++slot) {
+        const core::PieceDraw d = core::draw_from_pieces(strata, tri, tris[tri], s * core::kSegmentSlots + slot,
+                                                         keys.exact, tries.max_tries);
+        out[first + slot] = d.sample;
+        r.candidates += d.attempts;
+        r.exhausted += d.landed ? 0 : 1;
+        ++r.exact;
+      }
     }
   }
   return r;
@@ -99,7 +110,7 @@ TEST(CandidateStream, BatchedFillIsTheOneAtATimeRule) {
     for (double acceptance : {0.0, 0.02, 0.3, 0.9, 1.0})
       for (std::uint64_t slots : {1ull, 5ull, 256ull}) {
         if (acceptance == 0.0 && max_tries > 40) continue;  // it would run 2^28 tries a slot
-        core::SegmentFill one(slots, max_tries), batched(slots, max_tries);
+        core::SegmentFill one(slots, {max_tries}), batched(slots, {max_tries});
         std::vector<int> one_lanes, batched_lanes;
         for (int batch = 0; !batched.done(); ++batch) {
           std::uint32_t mask = 0;
@@ -153,19 +164,25 @@ TEST(CandidateStream, RealizationIsTheStreamWalkedOneCandidateAtATime) {
   make_cpu_sampler(mesh.view(), {&view, 1})->generate({.seed = 4, .target_count = 30000}, frame);
   const core::DensityMap map{m.texels, m.width, m.height, m.addressing, m.scale};
   const auto tris = texel_triangles(core::make_triangle_records(mesh.view(), 1), map);
-  const PhiloxKey key = stream_key(4, Stream::realization);
-  for (std::uint32_t max_tries : {1u, 3u, 20u, 1u << 28}) {
-    SCOPED_TRACE(max_tries);
+  const cpu::RealizationKeys keys{stream_key(4, Stream::realization), stream_key(4, Stream::exact)};
+  for (const core::TrsTries tries : {core::TrsTries{1, 0}, core::TrsTries{3, 0}, core::TrsTries{20, 0},
+                                     core::TrsTries{1u << 28, 0}, core::TrsTries{1u << 28, 1},
+                                     core::TrsTries{1u << 28, 5}, core::TrsTries{3, 40}, core::TrsTries{1u << 28, 256}}) {
+    SCOPED_TRACE(testing::Message() << "max_tries " << tries.max_tries << ", exact_after " << tries.exact_after);
     Buffer<Sample> got;
     std::vector<Sample> want;
     const cpu::RealizationResult a = cpu::realize(tris, {&map, 1}, frame.max_density.span(), frame.cdf.span(),
-                                                  frame.inverse_permutation.span(), key, max_tries, got);
+                                                  frame.inverse_permutation.span(), keys, tries, got);
     const cpu::RealizationResult b = reference_realize(tris, map, frame.max_density.span(), frame.cdf.span(),
-                                                       frame.inverse_permutation.span(), key, max_tries, want);
+                                                       frame.inverse_permutation.span(), keys, tries, want);
     trs_test::expect_same_samples(got.span(), want);
     EXPECT_EQ(a.candidates, b.candidates);
     EXPECT_EQ(a.exhausted, b.exhausted);
-    if (max_tries < 20) EXPECT_GT(a.exhausted, 0u) << "the rule on tries is exercised";
+    EXPECT_EQ(a.exact, b.exact);
+    const core::TryLimit limit = tries.rejection();
+    if (limit.max_tries < 20 && !limit.stop) EXPECT_GT(a.exhausted, 0u) << "the rule on tries is exercised";
+    if (limit.max_tries < 20 && limit.stop) EXPECT_GT(a.exact, 0u) << "exact draws are exercised";
+    if (tries.exact_after == 256) EXPECT_EQ(a.exact, 0u) << "an ordinary map never needs them";
   }
 }
 
@@ -187,7 +204,7 @@ TEST(CandidateStream, RejectionSamplingIsTheStreamOverTheOutput) {
   std::vector<Sample> want(n);
   std::uint64_t candidates = 0, exhausted = 0;
   for (std::uint64_t s = 0; s * core::kSegmentSlots < n; ++s) {
-    core::SegmentFill fill(std::min(core::kSegmentSlots, n - s * core::kSegmentSlots), 4);
+    core::SegmentFill fill(std::min(core::kSegmentSlots, n - s * core::kSegmentSlots), {4});
     for (std::uint64_t j = 0; !fill.done(); ++j) {
       const ScalarCandidate c = scalar_candidate(0, s, j, key);
       const auto tri = std::uint32_t(std::upper_bound(area_cdf.begin(), area_cdf.end(), c.pick * area_cdf[39]) -

@@ -22,11 +22,14 @@ namespace {
 
 const double kAlpha = trs_test::kDistributionAlpha;
 
-Frame generate(const Scenario& s, Method method, Overlap overlap = Overlap::closed_form) {
+Frame generate(const Scenario& s, Method method, Overlap overlap = Overlap::closed_form,
+               std::uint32_t exact_after = FrameRequest{}.exact_after) {
   const DensityMapView view = s.map.view();
   auto sampler = make_cpu_sampler(s.mesh.view(), {&view, 1});
   Frame frame;
-  sampler->generate({.seed = s.seed, .target_count = s.target, .method = method, .overlap = overlap}, frame);
+  sampler->generate(
+      {.seed = s.seed, .target_count = s.target, .method = method, .overlap = overlap, .exact_after = exact_after},
+      frame);
   for (const Sample& x : frame.samples)
     EXPECT_GT(sampler->density(x.triangle, x.b1, x.b2), 0.0f) << "a sample where the density is zero";
   return frame;
@@ -61,6 +64,19 @@ void realize_with_wrong_map(const Scenario& s, const Frame& counted, Buffer<Samp
 TEST(Distribution, TrsMatchesTheDensity) {
   for (const Scenario& s : trs_test::scenarios()) {
     const Frame frame = generate(s, Method::trs);
+    const auto result = trs_test::test_per_triangle(s, frame.samples.span());
+    EXPECT_GT(result.dof, 100) << s.name << ": too few cells to have power";
+    EXPECT_TRUE(result.passes(kAlpha)) << s.name << "\n" << result.describe();
+  }
+}
+
+// TRS that gives up rejection at the first rejection in a row: most slots are exact draws from
+// the triangles' texel pieces, and the samples still follow the density.
+TEST(Distribution, TrsWithExactDrawsMatchesTheDensity) {
+  for (const Scenario& s : trs_test::scenarios()) {
+    const Frame frame = generate(s, Method::trs, Overlap::closed_form, 1);
+    EXPECT_GT(frame.exact_draws, frame.sample_count / 4) << s.name << ": exact draws are exercised";
+    EXPECT_EQ(frame.exhausted, 0u) << s.name;
     const auto result = trs_test::test_per_triangle(s, frame.samples.span());
     EXPECT_GT(result.dof, 100) << s.name << ": too few cells to have power";
     EXPECT_TRUE(result.passes(kAlpha)) << s.name << "\n" << result.describe();
@@ -137,6 +153,21 @@ TEST(Distribution, RejectsNaiveStratificationWithWrongPieceWeights) {
   EXPECT_FALSE(trs_test::test_per_triangle(s, frame.samples.span()).passes(kAlpha));
 }
 
+TEST(Distribution, RejectsTrsWhoseExactDrawsHaveWrongPieceWeights) {
+  // Exact draws after one rejection, from the square root of the map: the same support, the
+  // wrong shares.
+  const Scenario s = trs_test::scenarios()[2];
+  Frame frame = generate(s, Method::trs);
+  core::DensityMap flatter{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
+  for (float& texel : flatter.texels) texel = std::sqrt(texel);
+  const cpu::RealizationResult r = cpu::realize(
+      trs_test::texel_triangles(s), {&flatter, 1}, frame.max_density.span(), frame.cdf.span(),
+      frame.inverse_permutation.span(), {stream_key(s.seed, Stream::realization), stream_key(s.seed, Stream::exact)},
+      {1u << 20, 1}, frame.samples);
+  EXPECT_GT(r.exact, frame.sample_count / 4);
+  EXPECT_FALSE(trs_test::test_per_triangle(s, frame.samples.span()).passes(kAlpha));
+}
+
 TEST(Distribution, FastRejectionSamplingMatchesTheDensity) {
   for (const Scenario& s : trs_test::scenarios()) {
     const Frame frame = generate(s, Method::frs);
@@ -170,7 +201,8 @@ TEST(Distribution, RejectsTrsThatIgnoresTheMaxDensity) {
   const core::DensityMap map{s.map.texels, s.map.width, s.map.height, s.map.addressing, s.map.scale};
   const std::vector<float> no_bound(frame.max_density.size(), 0.0f);
   cpu::realize(tris, {&map, 1}, no_bound, frame.cdf.span(), frame.inverse_permutation.span(),
-               stream_key(s.seed, Stream::realization), 1u << 20, frame.samples);
+               {stream_key(s.seed, Stream::realization), stream_key(s.seed, Stream::exact)}, {1u << 20, 0},
+               frame.samples);
   EXPECT_FALSE(trs_test::test_per_triangle(s, frame.samples.span()).passes(kAlpha));
 }
 

@@ -320,18 +320,23 @@ Mesh texel_aligned_quads(int count, std::uint64_t seed) {
 TEST_F(VulkanSampler, CandidateStreamIsTheCpusSampleForSample) {
   // The device's subgroups walk each segment together; the CPU walks it 16 candidates at a time.
   // Where both backends give every triangle the same N_T and D_T^max, the ordered scan puts
-  // every sample in the same slot: the outputs are equal in order, with the same candidate and
-  // exhausted counts, also when few tries per slot exhaust slots in the middle of a subgroup's
-  // round and carry rejections from one round to the next. A sparse map keeps acceptance low.
+  // every sample in the same slot: the outputs are equal in order, with the same candidate,
+  // exhausted and exact-draw counts, also when few tries per slot exhaust slots (or, for TRS,
+  // stop the walk for exact draws) in the middle of a subgroup's round and carry rejections from
+  // one round to the next. A sparse map keeps acceptance low.
   const Mesh mesh = texel_aligned_quads(40, 41);
   const std::vector<Map> maps = {trs_test::random_map(16, 16, 0.7, 42)};
   auto sampler = gpu(mesh, maps);
-  for (std::uint32_t max_tries : {1u, 2u, 5u, 1u << 28}) {
-    SCOPED_TRACE(max_tries);
+  struct Tries {
+    std::uint32_t max_tries, exact_after;
+  };
+  for (const Tries tries : {Tries{1, 0}, Tries{2, 0}, Tries{5, 0}, Tries{1u << 28, 0}, Tries{1u << 28, 1},
+                            Tries{1u << 28, 2}, Tries{3, 5}, Tries{1u << 28, 256}}) {
+    SCOPED_TRACE(testing::Message() << "max_tries " << tries.max_tries << ", exact_after " << tries.exact_after);
     for (Method method : {Method::trs, Method::rejection}) {
       SCOPED_TRACE(to_string(method));
-      const FrameRequest request{
-          .seed = 3, .target_count = 50000, .method = method, .scan = ScanOrder::ordered, .max_tries = max_tries};
+      const FrameRequest request{.seed = 3, .target_count = 50000, .method = method, .scan = ScanOrder::ordered,
+                                 .max_tries = tries.max_tries, .exact_after = tries.exact_after};
       const Frame want = generate(*cpu(mesh, maps), request), got = generate(*sampler, request);
       if (method == Method::trs) {
         ASSERT_EQ(got.counts.size(), want.counts.size());
@@ -344,7 +349,11 @@ TEST_F(VulkanSampler, CandidateStreamIsTheCpusSampleForSample) {
       expect_same_samples_in_order(want, got);
       EXPECT_EQ(got.candidates, want.candidates);
       EXPECT_EQ(got.exhausted, want.exhausted);
-      if (max_tries <= 2) EXPECT_GT(want.exhausted, 0u);
+      EXPECT_EQ(got.exact_draws, want.exact_draws);
+      const bool stops = method == Method::trs && tries.exact_after > 0;
+      const std::uint32_t limit = stops ? std::min(tries.max_tries, tries.exact_after) : tries.max_tries;
+      if (limit <= 2 && !stops) EXPECT_GT(want.exhausted, 0u);
+      if (limit <= 2 && stops) EXPECT_GT(want.exact_draws, 0u);
     }
   }
 }

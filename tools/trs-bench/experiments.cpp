@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <sstream>
 
 namespace trs_bench {
 
@@ -86,6 +87,7 @@ FrameRequest request_for(const Variant& v) {
   request.vulkan.counting = v.counting;
   request.vulkan.subgroup_reduction = v.subgroup_reduction;
   request.vulkan.inverse_cdf = v.inverse_cdf;
+  request.exact_after = v.exact_after;
   request.vulkan.read_back = false;  // the Vulkan backend's outputs stay on the device
   return request;
 }
@@ -235,6 +237,52 @@ void run_ablation_experiment(const Inputs& inputs, const ExperimentSettings& set
     for (const Variant& v : ablation_variants(backend)) ablation.variants.push_back(v);
   ablation.measure.recount = true;
   run_count_series("ablation", "Ablation", inputs, ablation, {}, frame, recorder);
+}
+
+namespace {
+
+/// One triangle, its texel-space corners (0, 0), (4 + d, 0) and (0, 4 + d) on an 8 x 8 map, and
+/// the map: texel (2, 2) lit alone, which the triangle overlaps in a corner of legs d, a fraction
+/// d^2 / (4 + d)^2 of its area; or, for fraction 0, every texel lit.
+Inputs sliver_inputs(double fraction) {
+  constexpr std::uint32_t kSize = 8;
+  const double root = std::sqrt(fraction), d = 4.0 * root / (1.0 - root);
+  const float corner = float((4.0 + d) / kSize);
+  std::ostringstream name;
+  name << "sliver:" << fraction;
+  Mesh mesh{fraction > 0 ? name.str() : std::string("ordinary"),
+            {0, 0, 0, 1, 0, 0, 0, 1, 0},
+            {0, 0, corner, 0, 0, corner},
+            {0, 1, 2}};
+  DensityMap map{fraction > 0 ? "one-texel" : "uniform", kSize, kSize, std::vector<float>(kSize * kSize, 1.0f), 1.0};
+  if (fraction > 0) {
+    std::fill(map.texels.begin(), map.texels.end(), 0.0f);
+    map.texels[2 * kSize + 2] = 1.0f;
+    map.coverage = 1.0 / (kSize * kSize);
+  }
+  return {{std::move(mesh)}, {std::move(map)}};
+}
+
+}  // namespace
+
+void run_sliver_experiment(const ExperimentSettings& settings, lightsampler::Frame& frame, Recorder& recorder) {
+  ExperimentSettings sliver = settings;
+  sliver.refinement = {};  // subdivision would split the triangle towards its lit texel
+  for (double fraction : {0.0, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6}) {
+    sliver.variants.clear();
+    for (Backend backend : backends_of(settings.variants)) {
+      const Variant exact{.backend = backend,
+                          .ablation = "exact-after-" + std::to_string(lightsampler::FrameRequest{}.exact_after)};
+      sliver.variants.push_back(exact);
+      if (fraction == 0 || fraction >= 1e-3) {
+        Variant paper = exact;
+        paper.exact_after = 0;
+        paper.ablation = "paper-rule";
+        sliver.variants.push_back(paper);
+      }
+    }
+    run_count_series("sliver", "Sliver of density", sliver_inputs(fraction), sliver, {}, frame, recorder);
+  }
 }
 
 void run_overlap_experiment(const Inputs& inputs, const ExperimentSettings& settings,

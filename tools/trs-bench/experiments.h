@@ -1,7 +1,8 @@
 #pragma once
 // The experiments, after the paper's Section 6: frame time against the sample count, TRS beside
 // the baselines (Figures 8 to 10), the triangle-texel overlap formulas (Figure 11), the scans
-// across triangle counts (Figure 13), and the ablations of Figure 14.
+// across triangle counts (Figure 13), and the ablations of Figure 14; and the time of a sliver of
+// density, the sparsity limit the paper names.
 
 #include <string>
 #include <vector>
@@ -29,6 +30,7 @@ struct Variant {
   lightsampler::Overlap overlap = lightsampler::Overlap::closed_form;
   bool subgroup_reduction = true;  ///< the Vulkan ablation switches (VulkanFrameOptions)
   bool inverse_cdf = false;
+  std::uint32_t exact_after = lightsampler::FrameRequest{}.exact_after;  ///< TRS's rule on slivers
   /// The ablation this variant is ("full", "no-subgroup-reduction", ...); empty outside them.
   std::string ablation{};
   /// Backend and counting path as the tables show it: "cpu", "vk", "vk/auto", "vk/raster", "vk/compute", "vk/per-triangle".
@@ -67,6 +69,13 @@ void run_overlap_experiment(const Inputs& inputs, const ExperimentSettings& sett
 /// counts, as with an animated texture (the paper's setting).
 void run_ablation_experiment(const Inputs& inputs, const ExperimentSettings& settings,
                              lightsampler::Frame& frame, Recorder& recorder);
+
+/// A sliver of density: one triangle over an 8 x 8 map whose one lit texel it overlaps by a
+/// fraction of its area, from 1e-2 down to 1e-6, beside the same triangle fully lit (the
+/// ordinary triangle with the same N_T), through the counts. TRS on every backend the variants
+/// use, unrefined, with exact draws after exact_after rejections in a row and, where plain
+/// rejection can finish (fractions down to 1e-3), with the paper's rule (exact_after 0).
+void run_sliver_experiment(const ExperimentSettings& settings, lightsampler::Frame& frame, Recorder& recorder);
 
 /// The ablations that change something on `backend`, each named.
 std::vector<Variant> ablation_variants(lightsampler::Backend backend);

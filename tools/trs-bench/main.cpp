@@ -130,7 +130,9 @@ int run(const CommandLine& cl) {
   print_backends(settings);
   std::cout << "warm-up " << settings.measure.warmup << ", repeats " << settings.measure.repeats
             << " (medians), budget " << settings.measure.budget_s << " s per case\n";
-  const Inputs inputs = generate_inputs(cl);
+  // The sliver experiment makes its own inputs.
+  const bool own_inputs_only = cl.experiments == std::vector<std::string>{"sliver"};
+  const Inputs inputs = own_inputs_only ? Inputs{} : generate_inputs(cl);
 
   lightsampler::Frame frame;
   Recorder recorder(std::cout, cl.csv);
@@ -141,6 +143,7 @@ int run(const CommandLine& cl) {
   if (contains(cl.experiments, "scan")) run_scan_experiment(inputs, settings, frame, recorder);
   if (contains(cl.experiments, "overlap")) run_overlap_experiment(inputs, settings, frame, recorder);
   if (contains(cl.experiments, "ablation")) run_ablation_experiment(inputs, settings, frame, recorder);
+  if (contains(cl.experiments, "sliver")) run_sliver_experiment(settings, frame, recorder);
   if (!cl.csv.empty()) std::cout << "\nwrote " << cl.csv << "\n";
 
   const auto problems = sanity_problems(recorder.results());
@@ -199,9 +202,10 @@ int main(int argc, char** argv) {
   app.add_option("--experiments", cl.experiments,
                  "sampling (time vs sample count), scan (scan orders), overlap (the overlap "
                  "formulas of TRS's counting), ablation (the sampler and one change at a time, "
-                 "through the counts)")
+                 "through the counts), sliver (one triangle whose lit texel overlaps it by 1e-2 "
+                 "to 1e-6 of its area, beside the same triangle fully lit)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"sampling", "scan", "overlap", "ablation"}))
+      ->check(CLI::IsMember({"sampling", "scan", "overlap", "ablation", "sliver"}))
       ->capture_default_str();
   app.add_option("--threads", cl.settings.threads, "Worker threads; 0: every hardware thread")
       ->capture_default_str();

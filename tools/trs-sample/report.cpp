@@ -65,6 +65,7 @@ nlohmann::ordered_json stats_json(const RunReport& run) {
   json["candidates"] = frame.candidates;
   json["acceptance_rate"] = rate ? nlohmann::ordered_json(*rate) : nlohmann::ordered_json(nullptr);
   json["exhausted"] = frame.exhausted;
+  json["exact_draws"] = frame.exact_draws;
   json["setup_bytes"] = frame.setup_bytes;
   json["ms"] = ms;
   json["out"] = run.options.out ? nlohmann::ordered_json(run.options.out->string())

@@ -33,6 +33,7 @@ enum class Stream : std::uint32_t {
   rejection = 3,    ///< plain rejection sampling: candidate j of segment s of the output
   naive = 4,        ///< naive stratification: attempt a of slot k of triangle T
   frs = 5,          ///< fast rejection sampling: candidate j of segment s of the output
+  exact = 6,        ///< TRS's exact draws: attempt a of slot k of triangle T
 };
 
 /// SplitMix64 finaliser: spreads a seed over all 64 bits.

@@ -83,8 +83,13 @@ struct FrameRequest {
   bool realize = true;
   VulkanFrameOptions vulkan;
   /// Rejections in a row before a slot gives up: the last of them fills the slot anyway and is
-  /// counted in Frame::exhausted; a non-zero count means a biased frame.
+  /// counted in Frame::exhausted; a non-zero count means a biased frame. Also bounds the
+  /// attempts of an exact draw (naive stratification; TRS after exact_after).
   std::uint32_t max_tries = 1u << 28;
+  /// TRS: rejections in a row after which the rest of the segment (up to 256 slots) is drawn
+  /// exactly from the triangle's texel pieces, counted in Frame::exact_draws. Unbiased, and
+  /// bounds the time of a triangle whose density is a sliver of it. 0: never (the paper's rule).
+  std::uint32_t exact_after = 256;
 };
 
 /// The passes a frame times. `distribution` is plain rejection sampling's set-up (area CDF and
@@ -110,6 +115,7 @@ struct Frame {
   std::uint64_t sample_count = 0;   ///< N, the effective total
   std::uint64_t candidates = 0;     ///< candidates tried; sample_count / candidates = acceptance rate
   std::uint64_t exhausted = 0;      ///< slots filled after max_tries rejections in a row
+  std::uint64_t exact_draws = 0;    ///< TRS: slots drawn exactly after exact_after rejections in a row
   /// Memory a method keeps between frames, bytes: FRS's micro-triangles and their CDF (built in
   /// the frame whose `distribution` pass is timed, the first or the first after update_map).
   std::uint64_t setup_bytes = 0;

@@ -9,8 +9,11 @@
 // samples stay the same. Plain rejection sampling walks the same way over segments of the whole
 // output (T = 0), its candidates spread over the mesh by area.
 //
-// The bound on tries: after max_tries rejected candidates in a row, the last of them fills the
-// slot anyway and is counted as exhausted; the count of rejections starts again.
+// The bound on tries: after max_tries rejected candidates in a row, either the last of them fills
+// the slot anyway and is counted as exhausted, and the count of rejections starts again (the
+// baselines, as the paper states them); or the walk stops there and the segment's remaining
+// slots are drawn exactly (TRS: core/piece_draw.h), so that a sliver of density costs bounded
+// time without bias.
 
 #include <algorithm>
 #include <bit>
@@ -55,13 +58,33 @@ void for_each_segment(std::span<const std::uint64_t> cdf, std::uint64_t lo, std:
   }
 }
 
+/// What a walk does at the max_tries-th rejection in a row: fill the slot with that candidate
+/// (`stop` false), or stop, leaving the rest of the segment to exact draws.
+struct TryLimit {
+  std::uint32_t max_tries;
+  bool stop = false;
+};
+
+/// TRS's bounds on tries: max_tries a slot, as for every method, and exact_after, the rejections
+/// in a row after which the rest of the segment is drawn exactly (0: never, the paper's rule).
+struct TrsTries {
+  std::uint32_t max_tries;
+  std::uint32_t exact_after;
+
+  TryLimit rejection() const {
+    return exact_after == 0 ? TryLimit{max_tries, false} : TryLimit{std::min(max_tries, exact_after), true};
+  }
+};
+
 /// The fill rule of one segment, fed candidates in j order: a candidate fills the next slot when
-/// it is accepted, or when it is the max_tries-th rejection in a row.
+/// it is accepted, or when it is the max_tries-th rejection in a row and the limit does not stop.
 class SegmentFill {
  public:
-  SegmentFill(std::uint64_t slots, std::uint32_t max_tries) : slots_(slots), max_tries_(max_tries) {}
+  SegmentFill(std::uint64_t slots, TryLimit limit) : slots_(slots), limit_(limit) {}
 
-  bool done() const { return filled_ == slots_; }
+  /// Full, or stopped by the limit.
+  bool done() const { return filled_ == slots_ || stopped_; }
+  bool stopped() const { return stopped_; }
   std::uint64_t filled() const { return filled_; }
   std::uint64_t tries() const { return tries_; }
   std::uint64_t exhausted() const { return exhausted_; }
@@ -70,7 +93,11 @@ class SegmentFill {
   bool take(bool accepted) {
     ++tries_;
     rejections_ = accepted ? 0 : rejections_ + 1;
-    if (!accepted && rejections_ < max_tries_) return false;
+    if (!accepted && rejections_ < limit_.max_tries) return false;
+    if (!accepted && limit_.stop) {
+      stopped_ = true;
+      return false;
+    }
     if (!accepted) {
       ++exhausted_;
       rejections_ = 0;
@@ -81,10 +108,11 @@ class SegmentFill {
 
   /// Takes the next `lanes` candidates (at most 32), bit l of `accepted` for candidate l, as
   /// take() on each in turn, until the segment is full; calls fill_slot(l, slot) for each one
-  /// that fills a slot. Without a possible exhausted slot, only the accepted bits are visited.
+  /// that fills a slot. Without a possible limit in these lanes, only the accepted bits are
+  /// visited.
   template <class F>
   void take(std::uint32_t accepted, int lanes, F&& fill_slot) {
-    if (max_tries_ - rejections_ <= std::uint32_t(lanes)) {
+    if (limit_.max_tries - rejections_ <= std::uint32_t(lanes)) {
       for (int l = 0; l < lanes && !done(); ++l)
         if (take(((accepted >> l) & 1u) != 0)) fill_slot(l, filled_ - 1);
       return;
@@ -103,9 +131,10 @@ class SegmentFill {
 
  private:
   std::uint64_t slots_;
-  std::uint32_t max_tries_;
+  TryLimit limit_;
   std::uint64_t filled_ = 0, tries_ = 0, exhausted_ = 0;
   std::uint32_t rejections_ = 0;
+  bool stopped_ = false;
 };
 
 }  // namespace lightsampler::core

@@ -14,7 +14,7 @@ void begin_frame(const FrameRequest& request, Frame& frame) {
   validate_request(request);
   frame.passes.clear();
   frame.method = request.method;
-  frame.candidates = frame.exhausted = 0;
+  frame.candidates = frame.exhausted = frame.exact_draws = 0;
   frame.setup_bytes = 0;
   frame.expected_total = std::numeric_limits<double>::quiet_NaN();
   frame.counting_used.reset();

@@ -80,10 +80,11 @@ inline PieceCells piece_cells(const TexelTriangle& t) {
           std::int64_t(std::floor(std::max({ys[0], ys[1], ys[2]}))), false};
 }
 
-/// Calls fn(const TexelPiece&) for every lattice cell the triangle overlaps with non-zero area,
-/// row by row. A triangle without UV area lies in the one cell of its origin.
-template <class Fn>
-void for_each_texel_piece(const TexelTriangle& t, Fn&& fn) {
+/// Calls fn(const TexelPiece&) for every lattice cell the triangle overlaps with non-zero area
+/// and keep(ix, iy) accepts, row by row; keep spares the clipping of cells the caller would
+/// ignore. A triangle without UV area lies in the one cell of its origin.
+template <class Fn, class Keep>
+void for_each_texel_piece(const TexelTriangle& t, Fn&& fn, Keep&& keep) {
   const double ox = t.origin[0], oy = t.origin[1];
   const double e1x = t.edge1[0], e1y = t.edge1[1], e2x = t.edge2[0], e2y = t.edge2[1];
   BaryPolygon simplex;
@@ -93,7 +94,7 @@ void for_each_texel_piece(const TexelTriangle& t, Fn&& fn) {
   simplex.n = 3;
   const PieceCells cells = piece_cells(t);
   if (cells.flat) {
-    fn(TexelPiece{cells.x0, cells.y0, simplex, 0.5});
+    if (keep(cells.x0, cells.y0)) fn(TexelPiece{cells.x0, cells.y0, simplex, 0.5});
     return;
   }
   for (std::int64_t iy = cells.y0; iy <= cells.y1; ++iy) {
@@ -101,12 +102,18 @@ void for_each_texel_piece(const TexelTriangle& t, Fn&& fn) {
     const BaryPolygon row = clip(clip(simplex, e1y, e2y, oy - double(iy)), -e1y, -e2y, double(iy + 1) - oy);
     if (row.n < 3) continue;
     for (std::int64_t ix = cells.x0; ix <= cells.x1; ++ix) {
+      if (!keep(ix, iy)) continue;
       const BaryPolygon cell = clip(clip(row, e1x, e2x, ox - double(ix)), -e1x, -e2x, double(ix + 1) - ox);
       if (cell.n < 3) continue;
       const double area = cell.area();
       if (area > 0.0) fn(TexelPiece{ix, iy, cell, area});
     }
   }
+}
+
+template <class Fn>
+void for_each_texel_piece(const TexelTriangle& t, Fn&& fn) {
+  for_each_texel_piece(t, fn, [](std::int64_t, std::int64_t) { return true; });
 }
 
 }  // namespace lightsampler::core

@@ -38,21 +38,24 @@ void draw_candidates(std::uint32_t triangle, std::uint64_t segment, std::uint64_
 struct WalkTally {
   std::uint64_t candidates = 0;
   std::uint64_t exhausted = 0;
+  std::uint64_t exact = 0;  ///< slots drawn exactly after the limit stopped a walk
 };
 
 /// Fills the slots of one segment, out[0 .. run.slots), from its candidate stream:
 /// draw(first, candidates) gives candidates first .. first + kLanes - 1 as samples, and returns a
 /// mask of the accepted ones (bit l for candidate first + l). All kLanes are judged before any
 /// fills a slot, so that their texel reads overlap; those after the last slot is filled are not
-/// counted.
+/// counted. Returns the slots filled: fewer than run.slots when the limit stopped the walk.
 template <class Draw>
-void walk_segment(const core::SegmentRun& run, std::uint32_t max_tries, Sample* out, Draw&& draw, WalkTally& tally) {
-  core::SegmentFill fill(run.slots, max_tries);
+std::uint64_t walk_segment(const core::SegmentRun& run, core::TryLimit limit, Sample* out, Draw&& draw,
+                           WalkTally& tally) {
+  core::SegmentFill fill(run.slots, limit);
   Sample candidates[kLanes];
   for (std::uint64_t first = 0; !fill.done(); first += kLanes)
     fill.take(draw(first, candidates), kLanes, [&](int l, std::uint64_t slot) { out[slot] = candidates[l]; });
   tally.candidates += fill.tries();
   tally.exhausted += fill.exhausted();
+  return fill.filled();
 }
 
 /// Walks the output, whose element e holds the slots cdf[e - 1] .. cdf[e] - 1 (inclusive CDF),
@@ -60,14 +63,15 @@ void walk_segment(const core::SegmentRun& run, std::uint32_t max_tries, Sample* 
 template <class Walk>
 RealizationResult walk_output(std::span<const std::uint64_t> cdf, std::uint64_t grain, const Walk& walk) {
   const std::uint64_t n = cdf.empty() ? 0 : cdf.back();
-  std::atomic<std::uint64_t> candidates{0}, exhausted{0};
+  std::atomic<std::uint64_t> candidates{0}, exhausted{0}, exact{0};
   tbb::parallel_for(tbb::blocked_range<std::uint64_t>(0, n, grain), [&](const tbb::blocked_range<std::uint64_t>& r) {
     WalkTally tally;
     core::for_each_segment(cdf, r.begin(), r.end(), [&](const core::SegmentRun& run) { walk(run, tally); });
     candidates.fetch_add(tally.candidates, std::memory_order_relaxed);
     exhausted.fetch_add(tally.exhausted, std::memory_order_relaxed);
+    exact.fetch_add(tally.exact, std::memory_order_relaxed);
   });
-  return {candidates.load(), exhausted.load()};
+  return {candidates.load(), exhausted.load(), exact.load()};
 }
 
 }  // namespace lightsampler::cpu

@@ -20,7 +20,7 @@ RealizationResult cdf_rejection_sample(std::span<const double> cdf, std::span<co
                                        std::uint64_t sample_count, PhiloxKey key, std::uint32_t max_tries,
                                        Buffer<Sample>& samples, const Judge& judge) {
   samples.resize(sample_count);
-  if (sample_count == 0) return {0, 0};
+  if (sample_count == 0) return {};
   // The whole output is one run of segments, as if one element held every sample. Small tasks:
   // a sample may try hundreds of candidates, and small counts must still spread over every thread.
   const std::uint64_t output[1] = {sample_count};
@@ -35,7 +35,7 @@ RealizationResult cdf_rejection_sample(std::span<const double> cdf, std::span<co
       }
       return accepted;
     };
-    walk_segment(run, max_tries, samples.data() + run.first, draw, tally);
+    walk_segment(run, {max_tries}, samples.data() + run.first, draw, tally);
   });
 }
 

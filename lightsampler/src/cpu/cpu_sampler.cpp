@@ -163,10 +163,12 @@ class CpuSampler final : public Sampler {
                                    frame.inverse_permutation.span(), stream_key(request.seed, Stream::naive),
                                    request.max_tries, frame.samples)
               : cpu::realize(scene_.texel_triangles(), scene_.maps(), frame.max_density.span(), frame.cdf.span(),
-                             frame.inverse_permutation.span(), stream_key(request.seed, Stream::realization),
-                             request.max_tries, frame.samples);
+                             frame.inverse_permutation.span(),
+                             {stream_key(request.seed, Stream::realization), stream_key(request.seed, Stream::exact)},
+                             {request.max_tries, request.exact_after}, frame.samples);
     frame.candidates = r.candidates;
     frame.exhausted = r.exhausted;
+    frame.exact_draws = r.exact;
     frame.passes.push_back({Pass::realization, pass.lap_ms()});
   }
 

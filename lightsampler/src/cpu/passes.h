@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "core/candidate_stream.h"
 #include "core/density.h"
 #include "core/geometry.h"
 #include "lightsampler/buffer.h"
@@ -33,19 +34,28 @@ void ordered_scan(std::span<const std::uint64_t> counts, Buffer<std::uint64_t>& 
                   Buffer<std::uint32_t>& inverse_permutation);
 
 struct RealizationResult {
-  std::uint64_t candidates;
-  std::uint64_t exhausted;
+  std::uint64_t candidates = 0;
+  std::uint64_t exhausted = 0;
+  std::uint64_t exact = 0;  ///< TRS: slots drawn from texel pieces after rejection stopped
+};
+
+/// Philox keys of TRS's realization: the candidate stream's, and the exact draws'.
+struct RealizationKeys {
+  PhiloxKey candidates;
+  PhiloxKey exact;
 };
 
 /// Realization pass (Algorithm 4): the N_T slots of triangle sigma^-1[p] start at cdf[p - 1];
 /// candidates from Heitz's map, accepted against D_T^max, fill them through the candidate stream
 /// (core/candidate_stream.h), keyed by triangle, so a triangle's samples do not depend on
-/// scheduling or scan order.
+/// scheduling or scan order. A walk that the limit stops fills the rest of its segment with exact
+/// draws (core/piece_draw.h): slot k of the triangle from counter (T, k, attempt), at most
+/// max_tries attempts each.
 RealizationResult realize(std::span<const core::TexelTriangle> triangles,
                           std::span<const core::DensityMap> maps, std::span<const float> max_density,
                           std::span<const std::uint64_t> cdf,
-                          std::span<const std::uint32_t> inverse_permutation, PhiloxKey key,
-                          std::uint32_t max_tries, Buffer<Sample>& samples);
+                          std::span<const std::uint32_t> inverse_permutation, RealizationKeys keys,
+                          core::TrsTries tries, Buffer<Sample>& samples);
 
 /// Plain rejection sampling (Algorithm 1): triangles by area, uniform points, accepted against
 /// the global max density, through the candidate stream over the whole output. `area_cdf` is

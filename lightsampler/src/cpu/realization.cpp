@@ -1,3 +1,4 @@
+#include "core/piece_draw.h"
 #include "cpu/candidates.h"
 #include "cpu/passes.h"
 
@@ -13,8 +14,8 @@ constexpr std::size_t kSamplesPerTask = 1 << 14;
 RealizationResult realize(std::span<const core::TexelTriangle> triangles,
                           std::span<const core::DensityMap> maps, std::span<const float> max_density,
                           std::span<const std::uint64_t> cdf,
-                          std::span<const std::uint32_t> inverse_permutation, PhiloxKey key,
-                          std::uint32_t max_tries, Buffer<Sample>& samples) {
+                          std::span<const std::uint32_t> inverse_permutation, RealizationKeys keys,
+                          core::TrsTries tries, Buffer<Sample>& samples) {
   samples.resize(cdf.empty() ? 0 : cdf.back());
   return walk_output(cdf, kSamplesPerTask, [&](const core::SegmentRun& run, WalkTally& tally) {
     const std::uint32_t tri = inverse_permutation[run.position];
@@ -25,7 +26,7 @@ RealizationResult realize(std::span<const core::TexelTriangle> triangles,
     CandidateBatch batch;
     auto draw = [&](std::uint64_t first, Sample(&out)[kLanes]) {
       std::uint32_t accepted = 0;
-      draw_candidates(tri, run.segment, first, key, batch);
+      draw_candidates(tri, run.segment, first, keys.candidates, batch);
       for (int l = 0; l < kLanes; ++l) {
         const auto [x, y] = core::texel_space_point(t, batch.b1[l], batch.b2[l]);
         accepted |= std::uint32_t(batch.accept[l] * bound < core::point_density(map, x, y)) << l;
@@ -33,7 +34,20 @@ RealizationResult realize(std::span<const core::TexelTriangle> triangles,
       }
       return accepted;
     };
-    walk_segment(run, max_tries, samples.data() + run.first, draw, tally);
+    Sample* out = samples.data() + run.first;
+    const std::uint64_t filled = walk_segment(run, tries.rejection(), out, draw, tally);
+    if (filled == run.slots) return;
+    // Rejection stopped: the rest of the segment from the triangle's texel pieces.
+    core::PieceStrata strata;
+    strata.build(t, maps);
+    for (std::uint64_t slot = filled; slot < run.slots; ++slot) {
+      const std::uint64_t k = run.segment * core::kSegmentSlots + slot;
+      const core::PieceDraw d = core::draw_from_pieces(strata, tri, t, k, keys.exact, tries.max_tries);
+      out[slot] = d.sample;
+      tally.candidates += d.attempts;
+      tally.exhausted += d.landed ? 0 : 1;
+    }
+    tally.exact += run.slots - filled;
   });
 }
 

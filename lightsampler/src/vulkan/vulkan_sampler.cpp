@@ -352,6 +352,7 @@ class VulkanSampler final : public Sampler {
                                                  : run_rejection(request, frame, capacity);
       frame.candidates = totals.candidates;
       frame.exhausted = totals.exhausted;
+      frame.exact_draws = totals.exact;
       if (counted) {
         frame.expected_total = totals.expected_total;
         core::validate_expected_total(frame.expected_total);
@@ -410,12 +411,14 @@ class VulkanSampler final : public Sampler {
     c.timestamp(to_string(Pass::scan));
     if (capacity > 0) {
       const PhiloxKey key = stream_key(request.seed, naive ? Stream::naive : Stream::realization);
+      const PhiloxKey exact_key = stream_key(request.seed, Stream::exact);
       gpu::RealizationPush push{scene_.triangles(), scene_.map_records(), scene_.texels(),
                                 buffers_.max_density.address(), scene_.piece_offsets(),
                                 naive ? buffers_.piece_cdf.address() : 0, buffers_.cdf.address(),
                                 trs_inverse(frame)->address(), buffers_.samples.address(),
                                 buffers_.totals.address(), 0, key[0], key[1], n_tri,
-                                device_max_tries(context_->device_name(), request.max_tries)};
+                                device_max_tries(context_->device_name(), request.max_tries),
+                                exact_key[0], exact_key[1], naive ? 0 : request.exact_after, 0};
       if (request.vulkan.inverse_cdf && !naive && n_tri > 0) record_guide(c, push);
       record_realization(c, naive ? pipelines_.naive_realization : pipelines_.realization, push,
                          {.method = gpu::kPlanTrs}, capacity);
