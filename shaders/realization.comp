@@ -81,9 +81,6 @@ void main() {
   uint64_t chunks = (n + uint64_t(kSegmentSlots) - 1ul) / uint64_t(kSegmentSlots);
   uint64_t stride = uint64_t(gl_NumWorkGroups.x) * uint64_t(gl_NumSubgroups);
   WalkTally tally = WalkTally(0ul, 0ul, 0ul);
-  // The rejection loop's limit (core::TrsTries::rejection).
-  bool stop = p.exact_after > 0u;
-  uint limit = stop ? min(p.max_tries, p.exact_after) : p.max_tries;
   // Every bound below is subgroup-uniform: the subgroup walks together.
   for (uint64_t c = uint64_t(gl_WorkGroupID.x) * uint64_t(gl_NumSubgroups) + uint64_t(gl_SubgroupID); c < chunks;
        c += stride) {
@@ -100,6 +97,10 @@ void main() {
       walked_map = Maps(p.maps).v[walked_texels.map];
       walked_bound = uintBitsToFloat(Uints(p.max_density).v[walked_triangle]);
       uint slots = uint(min(uint64_t(kSegmentSlots), end - first));
+      // The rejection loop's limit (core::TrsTries::rejection), where the device draws exactly.
+      PieceLattice l = piece_lattice(walked_texels);
+      bool stop = p.exact_after > 0u && lattice_columns(l) * uint64_t(l.y1 - l.y0 + 1l) <= uint64_t(p.exact_cells);
+      uint limit = stop ? min(p.max_tries, p.exact_after) : p.max_tries;
       uint filled = walk_segment(p.samples, segment, first, slots, limit, stop, tally);
       if (filled < slots) draw_exactly(segment, first, filled, slots, tally);
     }

@@ -148,7 +148,7 @@ struct RealizationPush {
   uint max_tries;
   uint exact_key0, exact_key1;  // TRS: Philox key of the exact draws
   uint exact_after;   // TRS: rejections in a row that stop a segment's walk (0: never)
-  uint pad0;
+  uint exact_cells;   // TRS: the most lattice cells of a triangle drawn exactly (device limit)
 };
 
 LS_CONST uint kPlanTrs = 0u;        // N already in the totals: from the rounding pass, or (FRS) the host

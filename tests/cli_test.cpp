@@ -150,7 +150,7 @@ TEST_F(CliTest, WritesPlyAndStatsThatAgree) {
 
   const nlohmann::json stats = read_json(file("s.json"));
   for (const char* key : {"expected_total", "sample_count", "candidates", "acceptance_rate",
-                          "exhausted", "method", "backend", "device", "threads", "seed",
+                          "exhausted", "exact_draws", "method", "backend", "device", "threads", "seed",
                           "target_count", "scan", "triangles", "map", "mesh", "ms"}) {
     EXPECT_TRUE(stats.contains(key)) << key;
   }
@@ -253,6 +253,12 @@ TEST_F(CliTest, OverlapFormulasAndTheLookbackScanOnTheCpu) {
     EXPECT_EQ(read_json(file("s.json"))["overlap"], overlap);
   }
   EXPECT_EQ(run({mesh, map, "--overlap", "exact"}).status, 2);
+  // Exact draws after every rejection: some slots of the top-row map are drawn exactly.
+  const RunResult exact = run({mesh, map, "--exact-after", "1", "--refine", "0", "--backend", "cpu", "--count",
+                               "1000", "--stats", file("s.json")});
+  ASSERT_EQ(exact.status, 0) << exact.err;
+  EXPECT_GT(read_json(file("s.json"))["exact_draws"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(run({mesh, map, "--exact-after", "-1"}).status, 2);
   const RunResult lookback = run({mesh, map, "--scan", "lookback", "--backend", "cpu", "--count", "1000"});
   EXPECT_EQ(lookback.status, 1);
   EXPECT_NE(lookback.err.find("Vulkan backend only"), std::string::npos) << lookback.err;

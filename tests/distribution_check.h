@@ -39,6 +39,10 @@ struct FamilyMember {
 };
 inline constexpr FamilyMember kDistributionFamily[] = {
     {"CPU TRS (distribution_test)", true},
+    {"CPU TRS with exact draws after one rejection (distribution_test)", true},
+    {"CPU TRS on a sliver of density, 1e-2 of the triangle (sliver_test)", false},
+    {"CPU TRS on a sliver of density, 1e-4 of the triangle (sliver_test)", false},
+    {"CPU TRS on a sliver of density, 1e-6 of the triangle (sliver_test)", false},
     {"CPU rejection sampling (distribution_test)", true},
     {"CPU naive stratification (distribution_test)", true},
     {"CPU fast rejection sampling (distribution_test)", true},

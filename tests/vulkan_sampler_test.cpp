@@ -358,6 +358,36 @@ TEST_F(VulkanSampler, CandidateStreamIsTheCpusSampleForSample) {
   }
 }
 
+TEST_F(VulkanSampler, ExactDrawsOfLargeTrianglesAreTheCpus) {
+  // Exact draws walk a triangle's lattice cells a subgroup's width at a time: triangles of a few
+  // to several hundred cells (within lavapipe's loop limit: device_exact_cells), over a sparse
+  // map (dark cells are skipped before clipping), with wrap beyond the unit square, and a sliver:
+  // one lit texel overlapped by 1e-6 of its triangle.
+  Mesh mesh = trs_test::random_triangles(12, -0.3f, 1.3f, 61);
+  const float p[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const float corner = float((4.0 + 4e-3 / (1.0 - 1e-3)) / 16);  // the sliver of tests/sliver_test.cpp, on 16 texels
+  const float uv[3][2] = {{0, 0}, {corner, 0}, {0, corner}};
+  mesh.add_triangle(p, uv);
+  // The sliver on a map of its own, scaled up to draw about half the samples.
+  mesh.triangle_maps.assign(12, 0);
+  mesh.triangle_maps.push_back(1);
+  std::vector<Map> maps = {trs_test::random_map(16, 16, 0.9, 62), Map{std::vector<float>(16 * 16, 0.0f), 16, 16}};
+  maps[1].texels[2 * 16 + 2] = 1.0f;
+  maps[1].scale = 1e8f;
+  auto sampler = gpu(mesh, maps);
+  for (std::uint32_t exact_after : {1u, FrameRequest{}.exact_after}) {
+    SCOPED_TRACE(exact_after);
+    const FrameRequest request{.seed = 5, .target_count = 20000, .scan = ScanOrder::ordered, .exact_after = exact_after};
+    const Frame want = generate(*cpu(mesh, maps), request), got = generate(*sampler, request);
+    ASSERT_EQ(got.samples.size(), want.samples.size());
+    expect_same_samples_in_order(want, got);
+    EXPECT_EQ(got.candidates, want.candidates);
+    EXPECT_EQ(got.exact_draws, want.exact_draws);
+    EXPECT_GT(want.exact_draws, 0u);
+    EXPECT_EQ(want.exhausted, 0u);
+  }
+}
+
 TEST_F(VulkanSampler, WrapAndClampAgreeExactlyWithTheCpuFarBeyondTheUnitSquare) {
   // Texel addresses of cells down to -40 on maps 7 and 5 texels wide: every counting path reads
   // exactly the CPU's texels (D_T^max equal, N-bar_T equal up to float summation order), and

@@ -87,6 +87,7 @@ void generate(lightsampler::Sampler& sampler, const Options& options, lightsampl
   request.method = options.method;
   request.scan = options.scan;
   request.overlap = options.overlap;
+  request.exact_after = options.exact_after;
   request.vulkan.counting = options.counting;
   try {
     sampler.generate(request, frame);

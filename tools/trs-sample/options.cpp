@@ -78,6 +78,11 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
                  "paper's Eq. 6 SDF approximation (biased; for experiments)")
       ->check(CLI::IsMember(names(kOverlaps)))
       ->capture_default_str();
+  app.add_option("--exact-after", options.exact_after,
+                 "TRS: rejections in a row after which the rest of a segment is drawn exactly from "
+                 "its triangle's texel pieces (bounds the time of slivers of density); 0: never, "
+                 "the paper's rule")
+      ->capture_default_str();
   app.add_option("--address", address, "what UVs outside [0, 1] read")
       ->check(CLI::IsMember(names(kAddressing)))
       ->capture_default_str();

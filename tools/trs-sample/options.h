@@ -28,6 +28,7 @@ struct Options {
   lightsampler::Counting counting = lightsampler::Counting::automatic;
   lightsampler::ScanOrder scan = lightsampler::ScanOrder::automatic;
   lightsampler::Overlap overlap = lightsampler::Overlap::closed_form;
+  std::uint32_t exact_after = lightsampler::FrameRequest{}.exact_after;
   lightsampler::Addressing addressing = lightsampler::Addressing::wrap;
   MapEncoding map_encoding = MapEncoding::automatic;
   std::optional<std::filesystem::path> out;

@@ -40,16 +40,25 @@ using vk::workgroups_for;
 // Viewport tile of the raster counting path, in texels (within every device's limits).
 constexpr std::int64_t kTile = 4096;
 
-/// Tries per slot that realization may make on this device. Mesa's llvmpipe (lavapipe) ends
-/// shader loops after about 65535 iterations (a counter shared by the loops of a shader), and
-/// then lanes of the same SIMD group come out wrong. A subgroup walks a chunk's segments in
-/// rounds of one candidate per lane, so a chunk stays within that limit while its slots need
-/// fewer than about 65535 rounds in all; there a slot stops at 2^15 tries and, if still
-/// rejected, is counted in Frame::exhausted like any slot reaching max_tries.
+/// Mesa's llvmpipe (lavapipe) ends shader loops after about 65535 iterations (a counter shared
+/// by the loops of a shader), and then lanes of the same SIMD group come out wrong.
+bool is_llvmpipe(const std::string& device) { return device.find("llvmpipe") != std::string::npos; }
+
+/// Tries per slot that realization may make on this device. A subgroup walks a chunk's segments
+/// in rounds of one candidate per lane, so on llvmpipe a chunk stays within the loop limit while
+/// its slots need fewer than about 65535 rounds in all; there a slot stops at 2^15 tries and, if
+/// still rejected, is counted in Frame::exhausted like any slot reaching max_tries.
 std::uint32_t device_max_tries(const std::string& device, std::uint32_t requested) {
   constexpr std::uint32_t kLlvmpipeMaxTries = 1u << 15;
-  if (device.find("llvmpipe") != std::string::npos) return std::min(requested, kLlvmpipeMaxTries);
-  return requested;
+  return is_llvmpipe(device) ? std::min(requested, kLlvmpipeMaxTries) : requested;
+}
+
+/// The most lattice cells of a triangle that TRS's exact draws walk on this device. On llvmpipe
+/// a segment's exact draws walk the cells once per round of slots, so larger triangles would
+/// pass the loop limit: they keep rejecting, up to max_tries, as with exact_after 0.
+std::uint32_t device_exact_cells(const std::string& device) {
+  constexpr std::uint32_t kLlvmpipeExactCells = 1024;
+  return is_llvmpipe(device) ? kLlvmpipeExactCells : std::numeric_limits<std::uint32_t>::max();
 }
 
 /// How the per-triangle count buffers' N-bar_T and D_T^max were counted: TRS's path, whether its
@@ -418,7 +427,8 @@ class VulkanSampler final : public Sampler {
                                 trs_inverse(frame)->address(), buffers_.samples.address(),
                                 buffers_.totals.address(), 0, key[0], key[1], n_tri,
                                 device_max_tries(context_->device_name(), request.max_tries),
-                                exact_key[0], exact_key[1], naive ? 0 : request.exact_after, 0};
+                                exact_key[0], exact_key[1], naive ? 0 : request.exact_after,
+                                device_exact_cells(context_->device_name())};
       if (request.vulkan.inverse_cdf && !naive && n_tri > 0) record_guide(c, push);
       record_realization(c, naive ? pipelines_.naive_realization : pipelines_.realization, push,
                          {.method = gpu::kPlanTrs}, capacity);
