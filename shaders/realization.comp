@@ -39,6 +39,16 @@ void draw_exactly(uint64_t segment, uint64_t first, uint filled, uint slots, ino
   PieceLattice l = piece_lattice(walked_texels);
   uint64_t unused;
   double total = sweep_pieces(l, walked_map, p.texels, false, 0.0lf, 0.0lf, unused);
+  if (total <= 0.0lf) {
+    // Counted density that clipping finds in no piece (an overlap of rounding's size): the
+    // slots give up, as at max_tries (cpu::realize).
+    for (uint slot = filled + lane; slot < slots; slot += width) {
+      Samples(p.samples + (first + uint64_t(slot)) * uint64_t(kSampleBytes)).v[0] =
+          Sample(walked_triangle, 1.0 / 3.0, 1.0 / 3.0);
+      tally.exhausted += 1ul;
+    }
+    return;
+  }
   uvec2 key = uvec2(p.exact_key0, p.exact_key1);
   for (uint round_first = filled; round_first < slots; round_first += width) {
     uint slot = round_first + lane;

@@ -58,6 +58,11 @@ cpu::RealizationResult reference_realize(std::span<const core::TexelTriangle> tr
       core::PieceStrata strata;
       strata.build(tris[tri], {&map, 1});
       for (std::uint64_t slot = fill.filled(); slot < slots; ++slot) {
+        if (strata.pieces.empty()) {  // no piece to draw from: the slot gives up
+          out[first + slot] = {tri, 1.0f / 3, 1.0f / 3};
+          ++r.exhausted;
+          continue;
+        }
         const core::PieceDraw d = core::draw_from_pieces(strata, tri, tris[tri], s * core::kSegmentSlots + slot,
                                                          keys.exact, tries.max_tries);
         out[first + slot] = d.sample;

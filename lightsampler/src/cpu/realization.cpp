@@ -1,3 +1,5 @@
+#include <algorithm>
+
 #include "core/piece_draw.h"
 #include "cpu/candidates.h"
 #include "cpu/passes.h"
@@ -40,6 +42,13 @@ RealizationResult realize(std::span<const core::TexelTriangle> triangles,
     // Rejection stopped: the rest of the segment from the triangle's texel pieces.
     core::PieceStrata strata;
     strata.build(t, maps);
+    if (strata.pieces.empty()) {
+      // Counted density that clipping finds in no piece (an overlap of rounding's size): the
+      // slots give up, as at max_tries.
+      std::fill(out + filled, out + run.slots, Sample{tri, 1.0f / 3, 1.0f / 3});
+      tally.exhausted += run.slots - filled;
+      return;
+    }
     for (std::uint64_t slot = filled; slot < run.slots; ++slot) {
       const std::uint64_t k = run.segment * core::kSegmentSlots + slot;
       const core::PieceDraw d = core::draw_from_pieces(strata, tri, t, k, keys.exact, tries.max_tries);
