@@ -226,6 +226,7 @@ std::vector<Variant> ablation_variants(Backend backend) {
   }
   variants.push_back(with("clipping-overlap", [](Variant& v) { v.overlap = Overlap::clipping; }));
   variants.push_back(with("sdf-overlap", [](Variant& v) { v.overlap = Overlap::sdf; }));
+  variants.push_back(with("no-exact-draws", [](Variant& v) { v.exact_after = 0; }));
   return variants;
 }
 
