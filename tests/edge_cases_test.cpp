@@ -210,36 +210,32 @@ TEST(EdgeCases, BadTargetsAreRejected) {
     EXPECT_THROW(run(mesh, {Map{{1.0f}, 1, 1}}, target(bad)), std::invalid_argument);
 }
 
-TEST(EdgeCases, ExhaustedSamplesAreCounted) {
-  // One bright texel among zeros: with a single try most samples cannot be accepted, under the
-  // paper's rule (no exact draws).
+TEST(EdgeCases, ExhaustedSamplesAreCountedAndExactDrawsTakeThem) {
+  // One bright texel among zeros: with a single try most samples cannot be accepted. Under the
+  // paper's rule (exact_after 0) they give up; with exact draws after the first rejection none
+  // does, and every sample lies in the bright texel.
   Map map{std::vector<float>(64, 0.0f), 8, 8};
   map.texels[9] = 1.0f;
-  FrameRequest request = target(1000);
-  request.max_tries = 1;
-  request.exact_after = 0;
-  const Frame f = run(trs_test::quad(1, 1, 0, 0, 1, 1), {map}, request);
-  EXPECT_GT(f.exhausted, 0u);
-  EXPECT_EQ(f.exact_draws, 0u);
-  EXPECT_EQ(f.candidates, f.sample_count) << "exactly one try each";
-}
-
-TEST(EdgeCases, ExactDrawsTakeTheSlotsThatRejectionGivesUp) {
-  // The same frame with exact draws after the first rejection: no slot gives up, and every
-  // sample lies in the bright texel.
-  Map map{std::vector<float>(64, 0.0f), 8, 8};
-  map.texels[9] = 1.0f;
-  FrameRequest request = target(1000);
-  request.max_tries = 1;
-  request.exact_after = 1;
   const Mesh mesh = trs_test::quad(1, 1, 0, 0, 1, 1);
   const DensityMapView view = map.view();
   auto sampler = make_cpu_sampler(mesh.view(), {&view, 1});
-  Frame f;
-  sampler->generate(request, f);
-  EXPECT_EQ(f.exhausted, 0u);
-  EXPECT_GT(f.exact_draws, f.sample_count / 2);
-  for (const Sample& s : f.samples) ASSERT_GT(sampler->density(s.triangle, s.b1, s.b2), 0.0f);
+  for (std::uint32_t exact_after : {0u, 1u}) {
+    SCOPED_TRACE(exact_after);
+    FrameRequest request = target(1000);
+    request.max_tries = 1;
+    request.exact_after = exact_after;
+    Frame f;
+    sampler->generate(request, f);
+    if (exact_after == 0) {
+      EXPECT_GT(f.exhausted, 0u);
+      EXPECT_EQ(f.exact_draws, 0u);
+      EXPECT_EQ(f.candidates, f.sample_count) << "exactly one try each";
+    } else {
+      EXPECT_EQ(f.exhausted, 0u);
+      EXPECT_GT(f.exact_draws, f.sample_count / 2);
+      for (const Sample& s : f.samples) ASSERT_GT(sampler->density(s.triangle, s.b1, s.b2), 0.0f);
+    }
+  }
 }
 
 TEST(EdgeCases, UpdatedMapChangesTheNextFrame) {
