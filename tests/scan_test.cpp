@@ -90,6 +90,7 @@ TEST(Scan, EmptyInput) {
 
 TEST(Scan, PackingLimits) {
   // n elements need bit_width(n) bits for the processing index; the sum gets the rest.
+  EXPECT_TRUE(core::unordered_scan_fits(0, ~std::uint64_t(0)));  // no elements: every bit is the sum's
   EXPECT_TRUE(core::unordered_scan_fits(1, (std::uint64_t(1) << 63) - 1));
   EXPECT_FALSE(core::unordered_scan_fits(1, std::uint64_t(1) << 63));
   EXPECT_TRUE(core::unordered_scan_fits(0xffffffffull, 0xffffffffull));  // the paper's 32/32 split

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds everything and runs the whole test suite (ctest); then builds
-# the library without its Vulkan backend and runs the tests of that configuration; then fuzzes
-# the parsers of user files for a fixed time each.
+# the library without its Vulkan backend and runs the tests of that configuration; then builds
+# everything with the sanitizers and runs the tests under them; then fuzzes the parsers of user
+# files for a fixed time each.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup-debian.sh
@@ -14,6 +15,13 @@ cmake -S . -B build-cpu-only -G Ninja -DCMAKE_BUILD_TYPE=Release -DLIGHTSAMPLER_
   -DLIGHTSAMPLER_BUILD_TOOLS=OFF
 cmake --build build-cpu-only
 ctest --test-dir build-cpu-only --output-on-failure --timeout 600 -j "$(nproc)"
+# Everything under AddressSanitizer and UndefinedBehaviorSanitizer (Clang), and all but the three
+# longest tests under them (tools/sanitize.sh says which and why). Line tables are all that a
+# report needs, and build faster than full debug information.
+cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+  -DTRS_SANITIZE=ON "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only -DNDEBUG"
+cmake --build build-sanitize
+bash tools/sanitize.sh
 # The parsers of user files under libFuzzer, AddressSanitizer and UndefinedBehaviorSanitizer
 # (Clang), each for a fixed time from its corpus (fuzz/README.md).
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \

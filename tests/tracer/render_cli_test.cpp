@@ -177,12 +177,14 @@ TEST_F(RenderCliTest, TimeBudgetRendersUntilItIsSpent) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_EQ(result.status, 0) << result.err;
   EXPECT_GE(seconds, 2.0);
-  EXPECT_LT(seconds, 4.0) << "a frame of 32 x 18 pixels takes milliseconds";
   read_render(exr, 32, 18);
   const nlohmann::json stats = read_json(json);
   EXPECT_GT(stats["frames"].get<unsigned>(), 2u);
   EXPECT_EQ(stats["interrupted"], false);
+  // The bound is on the tool's own clock, which leaves out loading its libraries and exiting:
+  // those take longer under the sanitizers and on a loaded machine, whatever the budget.
   EXPECT_GE(stats["wall_seconds"].get<double>(), 2.0);
+  EXPECT_LT(stats["wall_seconds"].get<double>(), 3.0) << "a frame of 32 x 18 pixels takes milliseconds";
   EXPECT_EQ(stats["settings"]["time"], 2.0);
   EXPECT_TRUE(stats["settings"]["spp"].is_null()) << "no cap on the frames";
 

@@ -24,7 +24,7 @@ bool unordered_scan_fits(std::uint64_t elements, std::uint64_t total) {
   // The high bits count processed elements (up to `elements`), the low bits hold the partial sum.
   const int index_bits = std::bit_width(elements);
   if (index_bits >= 64) return false;
-  return total < (std::uint64_t(1) << (64 - index_bits)) || index_bits == 0;
+  return index_bits == 0 || total < (std::uint64_t(1) << (64 - index_bits));
 }
 
 ScanOrder choose_scan(ScanOrder requested, ScanOrder preferred, std::uint64_t elements, std::uint64_t total) {
