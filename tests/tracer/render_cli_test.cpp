@@ -249,13 +249,19 @@ TEST_F(RenderCliTest, SettingsFileAndCommandLine) {
 
 // A key that is no long option (a misspelt one) would change nothing without a word: refused,
 // naming the file and the key.
-TEST_F(RenderCliTest, SettingsFileWithAnUnknownKeyIsRefused) {
-  const fs::path settings = write_text("render.toml", "width = 8\nsamples = 64\n");
-  const RunResult result = run({kScene.string(), "--settings", settings.string(), "--out", file("out.exr").string()});
-  EXPECT_EQ(result.status, 2) << result.err;
-  EXPECT_NE(result.err.find("trs-render: error: " + settings.string()), std::string::npos) << result.err;
-  EXPECT_NE(result.err.find("samples"), std::string::npos) << result.err;
-  EXPECT_FALSE(fs::exists(file("out.exr")));
+TEST_F(RenderCliTest, SettingsFileWithAnUnknownKeyOrAKeyWithoutAValueIsRefused) {
+  // The second, found by fuzzing: CLI11 handed `height` an empty list and read its first entry.
+  for (const auto& [text, key] : {std::pair{"width = 8\nsamples = 64\n", "samples"},
+                                  std::pair{"# a render\nheight = [e\n", "height"},
+                                  std::pair{"height = []\n", "height"}}) {
+    SCOPED_TRACE(text);
+    const fs::path settings = write_text("render.toml", text);
+    const RunResult result = run({kScene.string(), "--settings", settings.string(), "--out", file("out.exr").string()});
+    EXPECT_EQ(result.status, 2) << result.err;
+    EXPECT_NE(result.err.find("trs-render: error: " + settings.string()), std::string::npos) << result.err;
+    EXPECT_NE(result.err.find(key), std::string::npos) << result.err;
+    EXPECT_FALSE(fs::exists(file("out.exr")));
+  }
 }
 
 // 3. The image depends on the seed, not on the number of threads.

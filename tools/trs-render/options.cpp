@@ -6,8 +6,10 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "common/cli_options.h"
 
@@ -19,6 +21,19 @@ const std::map<std::string, tracer::StrategyKind> kStrategies = {
     {"power", tracer::StrategyKind::power},
     {"trs", tracer::StrategyKind::trs},
     {"ris", tracer::StrategyKind::ris}};
+
+/// The settings file as CLI11 reads TOML, but a key without a value (`height = []`) is refused:
+/// CLI11 would hand the option an empty list, which its conversions index all the same.
+class SettingsFile : public CLI::ConfigTOML {
+ public:
+  std::vector<CLI::ConfigItem> from_config(std::istream& input) const override {
+    std::vector<CLI::ConfigItem> items = CLI::ConfigTOML::from_config(input);
+    for (const CLI::ConfigItem& item : items)
+      if (item.inputs.empty() && item.name != "++" && item.name != "--")  // not a section's start or end
+        throw CLI::ConfigError(item.fullname() + ": no value");
+    return items;
+  }
+};
 
 }  // namespace
 
@@ -37,6 +52,7 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
 
   app.set_config("--settings", "", "settings file of `key = value` lines (TOML) with the long "
                                    "option names, e.g. spp = 64; the command line wins");
+  app.config_formatter(std::make_shared<SettingsFile>());
   // A misspelt key would otherwise be dropped without a word, and the render not be the one asked for.
   app.allow_config_extras(CLI::config_extras_mode::error);
   app.add_option("SCENE", options.scene, "glTF 2.0 scene (.gltf, .glb)")->required();
