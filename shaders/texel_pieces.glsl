@@ -130,15 +130,6 @@ struct PieceSums {
   float bound;
 };
 
-// A row's piece as the walks below clip it: the whole triangle when it has no UV area.
-BaryPolygon walked_row(PieceLattice l, int64_t iy) { return l.uv_flat ? unit_simplex() : row_piece(l, iy); }
-
-// The barycentric area of the piece in cell ix of a walked row (0: none).
-double walked_cell_area(PieceLattice l, BaryPolygon row, int64_t ix) {
-  BaryPolygon piece = l.uv_flat ? row : row.n < 3 ? empty_polygon() : cell_piece(l, row, ix);
-  return piece.n < 3 ? 0.0lf : polygon_area(piece);
-}
-
 // Walks the pieces of triangle t (which has a map) row by row, as core::for_each_texel_piece,
 // and writes the weight summed so far at every cell of its lattice box, row-major: `cells`
 // doubles from address `cdf` (the CDF that realization searches; the last is the total).
@@ -147,9 +138,11 @@ PieceSums walk_texel_pieces(TexelTriangle t, DensityMap map, uint64_t texels, ui
   PieceSums sums = PieceSums(0.0lf, 0.0);
   uint64_t j = 0ul;  // the cell's index in the box
   for (int64_t iy = l.y0; iy <= l.y1; ++iy) {
-    BaryPolygon row = walked_row(l, iy);  // one row clipped for all its cells, as the host clips it
+    // One row clipped for all its cells, as the host clips it.
+    BaryPolygon row = l.uv_flat ? unit_simplex() : row_piece(l, iy);
     for (int64_t ix = l.x0; ix <= l.x1; ++ix, ++j) {
-      double area = walked_cell_area(l, row, ix);
+      BaryPolygon piece = l.uv_flat ? row : row.n < 3 ? empty_polygon() : cell_piece(l, row, ix);
+      double area = piece.n < 3 ? 0.0lf : polygon_area(piece);
       if (area > 0.0lf) {
         float density = cell_density(map, texels, ix, iy);
         precise double weight = double(density) * area;
