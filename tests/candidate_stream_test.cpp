@@ -110,30 +110,53 @@ TEST(CandidateStream, SegmentsStartingInDisjointRangesCoverEverySlotOnce) {
 }
 
 TEST(CandidateStream, BatchedFillIsTheOneAtATimeRule) {
+  // Three fills of the same candidates: one at a time; a batch at a time; and a batch at a time
+  // through take_open wherever the batch is open, as the CPU walk fills without branches.
   std::mt19937_64 rng(5);
-  for (std::uint32_t max_tries : {1u, 2u, 3u, 5u, 16u, 17u, 40u, 1u << 28})
-    for (double acceptance : {0.0, 0.02, 0.3, 0.9, 1.0})
-      for (std::uint64_t slots : {1ull, 5ull, 256ull}) {
-        if (acceptance == 0.0 && max_tries > 40) continue;  // it would run 2^28 tries a slot
-        core::SegmentFill one(slots, {max_tries}), batched(slots, {max_tries});
-        std::vector<int> one_lanes, batched_lanes;
-        for (int batch = 0; !batched.done(); ++batch) {
-          std::uint32_t mask = 0;
-          for (int l = 0; l < cpu::kLanes; ++l)
-            mask |= std::uint32_t(std::bernoulli_distribution(acceptance)(rng)) << l;
-          for (int l = 0; l < cpu::kLanes && !one.done(); ++l)
-            if (one.take(((mask >> l) & 1u) != 0)) one_lanes.push_back(batch * cpu::kLanes + l);
-          batched.take(mask, cpu::kLanes, [&](int l, std::uint64_t slot) {
-            EXPECT_EQ(slot, batched_lanes.size());
-            batched_lanes.push_back(batch * cpu::kLanes + l);
-          });
+  for (const bool stop : {false, true})
+    for (std::uint32_t max_tries : {1u, 2u, 3u, 5u, 16u, 17u, 40u, 1u << 28})
+      for (double acceptance : {0.0, 0.02, 0.3, 0.9, 1.0})
+        for (std::uint64_t slots : {1ull, 5ull, 16ull, 40ull, 256ull}) {
+          if (acceptance == 0.0 && max_tries > 40) continue;  // it would run 2^28 tries a slot
+          const core::TryLimit limit{max_tries, stop};
+          core::SegmentFill one(slots, limit), batched(slots, limit), open(slots, limit);
+          std::vector<int> one_lanes, batched_lanes, open_lanes;
+          int opened = 0;
+          for (int batch = 0; !batched.done(); ++batch) {
+            std::uint32_t mask = 0;
+            for (int l = 0; l < cpu::kLanes; ++l)
+              mask |= std::uint32_t(std::bernoulli_distribution(acceptance)(rng)) << l;
+            for (int l = 0; l < cpu::kLanes && !one.done(); ++l)
+              if (one.take(((mask >> l) & 1u) != 0)) one_lanes.push_back(batch * cpu::kLanes + l);
+            batched.take(mask, cpu::kLanes, [&](int l, std::uint64_t slot) {
+              EXPECT_EQ(slot, batched_lanes.size());
+              batched_lanes.push_back(batch * cpu::kLanes + l);
+            });
+            if (open.done()) continue;
+            if (open.open(cpu::kLanes)) {
+              ++opened;
+              for (int l = 0; l < cpu::kLanes; ++l)
+                if ((mask >> l) & 1u) open_lanes.push_back(batch * cpu::kLanes + l);
+              open.take_open(mask, cpu::kLanes);
+            } else {
+              open.take(mask, cpu::kLanes, [&](int l, std::uint64_t) { open_lanes.push_back(batch * cpu::kLanes + l); });
+            }
+          }
+          SCOPED_TRACE(testing::Message() << "max_tries " << max_tries << ", acceptance " << acceptance
+                                          << ", slots " << slots << (stop ? ", stops" : ""));
+          EXPECT_TRUE(one.done());
+          EXPECT_TRUE(open.done());
+          EXPECT_EQ(batched_lanes, one_lanes);
+          EXPECT_EQ(open_lanes, one_lanes);
+          EXPECT_EQ(batched.tries(), one.tries());
+          EXPECT_EQ(open.tries(), one.tries());
+          EXPECT_EQ(batched.exhausted(), one.exhausted());
+          EXPECT_EQ(open.exhausted(), one.exhausted());
+          EXPECT_EQ(batched.stopped(), one.stopped());
+          EXPECT_EQ(open.stopped(), one.stopped());
+          // Large segments with a distant limit take most batches open.
+          if (slots == 256 && max_tries > 40 && acceptance > 0.2) EXPECT_GT(opened, 0);
         }
-        SCOPED_TRACE(testing::Message() << "max_tries " << max_tries << ", acceptance " << acceptance);
-        EXPECT_TRUE(one.done());
-        EXPECT_EQ(batched_lanes, one_lanes);
-        EXPECT_EQ(batched.tries(), one.tries());
-        EXPECT_EQ(batched.exhausted(), one.exhausted());
-      }
 }
 
 TEST(CandidateStream, VectorCandidatesAreTheScalarOnes) {
@@ -151,6 +174,39 @@ TEST(CandidateStream, VectorCandidatesAreTheScalarOnes) {
         ASSERT_EQ(batch.pick[l], c.pick);
       }
     }
+}
+
+TEST(CandidateStream, VectorAcceptanceIsTheScalarTest) {
+  // Triangles inside the map, across its edges under both addressings, at negative coordinates,
+  // and so far out (UVs near 2^24) that the lanes leave 32-bit range and take the 64-bit path.
+  const PhiloxKey key = stream_key(12, Stream::realization);
+  std::mt19937_64 rng(13);
+  for (const Addressing addressing : {Addressing::wrap, Addressing::clamp}) {
+    Map m = trs_test::random_map(24, 20, 0.5, 14);
+    m.addressing = addressing;
+    m.scale = 0.7f;
+    const core::DensityMap map{m.texels, m.width, m.height, m.addressing, m.scale};
+    const core::TexelTriangle triangles[] = {
+        {{2.5f, 3.25f}, {12.0f, 1.0f}, {3.0f, 9.5f}, 0},
+        {{-6.0f, 15.0f}, {40.0f, 2.0f}, {5.0f, 14.0f}, 0},
+        {{-30.5f, -41.0f}, {7.0f, -3.0f}, {-2.0f, 9.0f}, 0},
+        {{0.5f, 0.5f}, {0.0f, 0.0f}, {0.0f, 0.0f}, 0},
+        {{3.0e8f, -2.0e8f}, {1.0e3f, 0.0f}, {0.0f, 1.0e3f}, 0},
+        {{1.07e9f, 5.0f}, {2.0e7f, 0.0f}, {0.0f, 3.0f}, 0},
+    };
+    for (const core::TexelTriangle& t : triangles)
+      for (std::uint64_t first : {0ull, 16ull, 4096ull}) {
+        cpu::CandidateBatch batch;
+        cpu::draw_candidates(7, 3, first, key, batch);
+        const float bound = std::uniform_real_distribution<float>(0.1f, 1.0f)(rng);
+        const std::uint32_t got = cpu::accepted_on_triangle(t, map, bound, batch);
+        for (int l = 0; l < cpu::kLanes; ++l) {
+          const bool want =
+              batch.accept[l] * bound < core::texel_triangle_density(t, {&map, 1}, batch.b1[l], batch.b2[l]);
+          ASSERT_EQ(((got >> l) & 1u) != 0, want) << "origin " << t.origin[0] << ", lane " << l;
+        }
+      }
+  }
 }
 
 TEST(CandidateStream, CountersOfDifferentCandidatesDiffer) {

@@ -106,6 +106,19 @@ class SegmentFill {
     return true;
   }
 
+  /// Whether the next `lanes` candidates can neither reach the limit nor fill the segment before
+  /// the last of them: then their accepted ones fill the next slots in lane order (take_open).
+  bool open(int lanes) const {
+    return slots_ - filled_ >= std::uint64_t(lanes) && limit_.max_tries - rejections_ > std::uint32_t(lanes);
+  }
+
+  /// take(accepted, lanes, ...) where open(lanes): the caller has put accepted lane l in slot
+  /// filled() plus the accepted lanes before l.
+  void take_open(std::uint32_t accepted, int lanes) {
+    filled_ += std::uint64_t(std::popcount(accepted));
+    count_rejections(accepted, lanes);
+  }
+
   /// Takes the next `lanes` candidates (at most 32), bit l of `accepted` for candidate l, as
   /// take() on each in turn, until the segment is full; calls fill_slot(l, slot) for each one
   /// that fills a slot. Without a possible limit in these lanes, only the accepted bits are
@@ -125,11 +138,15 @@ class SegmentFill {
         return;
       }
     }
+    count_rejections(accepted, lanes);
+  }
+
+ private:
+  void count_rejections(std::uint32_t accepted, int lanes) {
     tries_ += std::uint64_t(lanes);
     rejections_ = accepted == 0 ? rejections_ + std::uint32_t(lanes) : std::uint32_t(std::countl_zero(accepted << (32 - lanes)));
   }
 
- private:
   std::uint64_t slots_;
   TryLimit limit_;
   std::uint64_t filled_ = 0, tries_ = 0, exhausted_ = 0;

@@ -26,11 +26,15 @@ inline std::uint32_t address(std::int64_t i, std::uint32_t n, Addressing address
   return std::uint32_t(r < 0 ? r + n : r);
 }
 
+/// The stored value of the texel that lattice cell (ix, iy) reads, before the map's scale.
+inline float cell_value(const DensityMap& map, std::int64_t ix, std::int64_t iy) {
+  return map.texels[std::size_t(address(iy, map.height, map.addressing)) * map.width +
+                    address(ix, map.width, map.addressing)];
+}
+
 /// Density of lattice cell (ix, iy): texel value times the map's scale.
 inline float cell_density(const DensityMap& map, std::int64_t ix, std::int64_t iy) {
-  return map.texels[std::size_t(address(iy, map.height, map.addressing)) * map.width +
-                    address(ix, map.width, map.addressing)] *
-         map.scale;
+  return cell_value(map, ix, iy) * map.scale;
 }
 
 /// The texel that lattice cell (ix, iy) reads.

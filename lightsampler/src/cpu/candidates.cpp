@@ -19,8 +19,12 @@ using F64 = double __attribute__((vector_size(8 * kLanes)));
 
 // One build for every x86-64, the widest vectors the processor has chosen at load time.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#define LIGHTSAMPLER_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define LIGHTSAMPLER_VECTOR_CLONES
 #endif
+
+LIGHTSAMPLER_VECTOR_CLONES
 void draw_candidates(std::uint32_t triangle, std::uint64_t segment, std::uint64_t first, PhiloxKey key,
                      CandidateBatch& out) {
   // core::candidate_counter, per lane.
@@ -57,6 +61,42 @@ void draw_candidates(std::uint32_t triangle, std::uint64_t segment, std::uint64_
     out.accept[l] = accept[l];
     out.pick[l] = pick[l];
   }
+}
+
+LIGHTSAMPLER_VECTOR_CLONES
+std::uint32_t accepted_on_triangle(const core::TexelTriangle& t, const core::DensityMap& map, float bound,
+                                   const CandidateBatch& batch) {
+  // Plain loops over the lanes, which the compiler turns into vector code.
+  alignas(64) float x[kLanes], y[kLanes], density[kLanes];
+  int in_range = 0;
+  // core::floor_to_int runs in 32-bit lanes where every point lies well inside their range
+  // (UVs go to 2^24, so texel coordinates can leave it); otherwise lane by lane in 64 bits.
+  constexpr float kRange = 0x1p30f;
+  for (int l = 0; l < kLanes; ++l) {
+    // core::texel_space_point, the same operations in the same order (no contraction).
+    x[l] = t.origin[0] + batch.b1[l] * t.edge1[0] + batch.b2[l] * t.edge2[0];
+    y[l] = t.origin[1] + batch.b1[l] * t.edge1[1] + batch.b2[l] * t.edge2[1];
+    in_range += int(x[l] > -kRange) & int(x[l] < kRange) & int(y[l] > -kRange) & int(y[l] < kRange);
+  }
+  if (in_range == kLanes) {
+    alignas(64) std::uint32_t index[kLanes];
+    int inside = 0;
+    for (int l = 0; l < kLanes; ++l) {
+      const std::int32_t tx = std::int32_t(x[l]), ty = std::int32_t(y[l]);  // truncated
+      const auto ix = std::uint32_t(tx - int(float(tx) > x[l])), iy = std::uint32_t(ty - int(float(ty) > y[l]));
+      inside += int(ix < map.width) & int(iy < map.height);
+      index[l] = iy * map.width + ix;  // maps have at most 2^28 texels
+    }
+    if (inside == kLanes)
+      for (int l = 0; l < kLanes; ++l) density[l] = map.texels[index[l]];
+    else
+      for (int l = 0; l < kLanes; ++l) density[l] = core::cell_value(map, core::floor_to_int(x[l]), core::floor_to_int(y[l]));
+  } else {
+    for (int l = 0; l < kLanes; ++l) density[l] = core::cell_value(map, core::floor_to_int(x[l]), core::floor_to_int(y[l]));
+  }
+  std::uint32_t accepted = 0;
+  for (int l = 0; l < kLanes; ++l) accepted |= std::uint32_t(batch.accept[l] * bound < density[l] * map.scale) << l;
+  return accepted;
 }
 
 }  // namespace lightsampler::cpu

@@ -12,6 +12,8 @@
 #include <tbb/parallel_for.h>
 
 #include "core/candidate_stream.h"
+#include "core/density.h"
+#include "core/geometry.h"
 #include "cpu/passes.h"
 #include "lightsampler/random.h"
 #include "lightsampler/sample.h"
@@ -34,6 +36,12 @@ struct CandidateBatch {
 void draw_candidates(std::uint32_t triangle, std::uint64_t segment, std::uint64_t first, PhiloxKey key,
                      CandidateBatch& out);
 
+/// TRS's test of a batch on triangle t, in vector registers: bit l set when accept[l] * bound <
+/// the density at the lane's point, bit for bit the scalar
+/// `accept * bound < core::texel_triangle_density(t, ...)`.
+std::uint32_t accepted_on_triangle(const core::TexelTriangle& t, const core::DensityMap& map, float bound,
+                                   const CandidateBatch& batch);
+
 /// Candidates and samples of a walk, summed over segments.
 struct WalkTally {
   std::uint64_t candidates = 0;
@@ -42,17 +50,30 @@ struct WalkTally {
 };
 
 /// Fills the slots of one segment, out[0 .. run.slots), from its candidate stream:
-/// draw(first, candidates) gives candidates first .. first + kLanes - 1 as samples, and returns a
-/// mask of the accepted ones (bit l for candidate first + l). All kLanes are judged before any
-/// fills a slot, so that their texel reads overlap; those after the last slot is filled are not
-/// counted. Returns the slots filled: fewer than run.slots when the limit stopped the walk.
-template <class Draw>
-std::uint64_t walk_segment(const core::SegmentRun& run, core::TryLimit limit, Sample* out, Draw&& draw,
-                           WalkTally& tally) {
+/// judge(first) draws candidates first .. first + kLanes - 1 and returns a mask of the accepted
+/// ones (bit l for candidate first + l); lane_sample(l) is then candidate first + l as a sample.
+/// All kLanes are judged before any fills a slot, so that their texel reads overlap; those after
+/// the last slot is filled are not counted. Returns the slots filled: fewer than run.slots when
+/// the limit stopped the walk.
+template <class Judge, class LaneSample>
+std::uint64_t walk_segment(const core::SegmentRun& run, core::TryLimit limit, Sample* out, Judge&& judge,
+                           LaneSample&& lane_sample, WalkTally& tally) {
   core::SegmentFill fill(run.slots, limit);
-  Sample candidates[kLanes];
-  for (std::uint64_t first = 0; !fill.done(); first += kLanes)
-    fill.take(draw(first, candidates), kLanes, [&](int l, std::uint64_t slot) { out[slot] = candidates[l]; });
+  for (std::uint64_t first = 0; !fill.done(); first += kLanes) {
+    const std::uint32_t accepted = judge(first);
+    if (fill.open(kLanes)) {
+      // Without branches on the accepted bits, which are random: every lane writes, and the
+      // next one overwrites a rejected lane's sample.
+      Sample* slot = out + fill.filled();
+      for (int l = 0; l < kLanes; ++l) {
+        *slot = lane_sample(l);
+        slot += (accepted >> l) & 1u;
+      }
+      fill.take_open(accepted, kLanes);
+    } else {
+      fill.take(accepted, kLanes, [&](int l, std::uint64_t slot) { out[slot] = lane_sample(l); });
+    }
+  }
   tally.candidates += fill.tries();
   tally.exhausted += fill.exhausted();
   return fill.filled();

@@ -26,16 +26,17 @@ RealizationResult cdf_rejection_sample(std::span<const double> cdf, std::span<co
   const std::uint64_t output[1] = {sample_count};
   return walk_output(output, 1 << 10, [&](const core::SegmentRun& run, WalkTally& tally) {
     CandidateBatch batch;
-    auto draw = [&](std::uint64_t first, Sample(&out)[kLanes]) {
+    Sample lanes[kLanes];
+    auto judge_lanes = [&](std::uint64_t first) {
       std::uint32_t accepted = 0;
       draw_candidates(0, run.segment, first, key, batch);
       for (int l = 0; l < kLanes; ++l) {
         const std::uint32_t element = core::pick_by_area(cdf, guide, batch.pick[l]);
-        accepted |= std::uint32_t(judge(element, batch.b1[l], batch.b2[l], batch.accept[l], out[l])) << l;
+        accepted |= std::uint32_t(judge(element, batch.b1[l], batch.b2[l], batch.accept[l], lanes[l])) << l;
       }
       return accepted;
     };
-    walk_segment(run, {max_tries}, samples.data() + run.first, draw, tally);
+    walk_segment(run, {max_tries}, samples.data() + run.first, judge_lanes, [&](int l) { return lanes[l]; }, tally);
   });
 }
 

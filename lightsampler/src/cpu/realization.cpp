@@ -26,18 +26,13 @@ RealizationResult realize(std::span<const core::TexelTriangle> triangles,
     const core::DensityMap& map = maps[t.map];
     const float bound = max_density[tri];
     CandidateBatch batch;
-    auto draw = [&](std::uint64_t first, Sample(&out)[kLanes]) {
-      std::uint32_t accepted = 0;
+    auto judge = [&](std::uint64_t first) {
       draw_candidates(tri, run.segment, first, keys.candidates, batch);
-      for (int l = 0; l < kLanes; ++l) {
-        const auto [x, y] = core::texel_space_point(t, batch.b1[l], batch.b2[l]);
-        accepted |= std::uint32_t(batch.accept[l] * bound < core::point_density(map, x, y)) << l;
-        out[l] = {tri, batch.b1[l], batch.b2[l]};
-      }
-      return accepted;
+      return accepted_on_triangle(t, map, bound, batch);
     };
+    auto lane_sample = [&](int l) { return Sample{tri, batch.b1[l], batch.b2[l]}; };
     Sample* out = samples.data() + run.first;
-    const std::uint64_t filled = walk_segment(run, tries.rejection(), out, draw, tally);
+    const std::uint64_t filled = walk_segment(run, tries.rejection(), out, judge, lane_sample, tally);
     if (filled == run.slots) return;
     // Rejection stopped: the rest of the segment from the triangle's texel pieces.
     core::PieceStrata strata;
