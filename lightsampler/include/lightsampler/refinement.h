@@ -25,7 +25,7 @@ namespace lightsampler {
 /// The subdivision's acceptance target that the tools take by default (`--refine auto`).
 /// Measured with trs-bench at 1e8 samples on the CPU backend (docs/benchmarks.md): with the
 /// split gain rule below and its look-ahead, a high target raises the acceptance on sparse
-/// maps from 37% to 62-64% (frames about 45% faster) and costs high-frequency maps about 5% (their
+/// maps from 37% to 65-68% (frames about 45% faster) and costs high-frequency maps about 5% (their
 /// splits near the texel scale do not pay and are not kept).
 inline constexpr float kAutoMinAcceptance = 0.85f;
 
@@ -33,9 +33,10 @@ struct Refinement {
   /// Split a triangle while its expected acceptance (mean density over D_T^max) is below this.
   /// 0: no refinement.
   float min_acceptance = 0.0f;
-  /// Never split a triangle that covers fewer texels than this: at the texel scale the density
-  /// is already constant, and parts only add counting work.
-  float min_texels = 0.25f;
+  /// Never split a triangle that covers fewer texels than this. Parts of a sixteenth of a texel
+  /// still pay on sparse maps, where they let a stroke's edge fall between them (the split gain
+  /// rule keeps only such splits); below that they only add counting work.
+  float min_texels = 0.0625f;
   /// Keep a split of a triangle of at most gain_texels texels only if its four parts draw at
   /// least this many times fewer candidates than the whole (the sum of D^max times area over
   /// the parts, against the whole's): near the texel scale a split that barely lowers the bound,
