@@ -71,7 +71,8 @@ inline CLI::Option* add_refine_option(CLI::App& app, lightsampler::Refinement& r
           [&refinement](const std::string& value) {
             refinement.min_acceptance = value == "auto" ? lightsampler::kAutoMinAcceptance : std::stof(value);
           },
-          "split triangles (at most into 4^8 parts, not below 4 texels) while the sampler's "
+          "split triangles (at most into 4^8 parts, not below " + text(refinement.min_texels) +
+              " texels) while the sampler's "
           "expected acceptance on them is below this; auto: " + text(lightsampler::kAutoMinAcceptance) +
               ", measured; 0: sample the mesh as it is")
       ->check(CLI::IsMember({"auto"}) | CLI::Range(0.0f, 1.0f))
