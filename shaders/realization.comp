@@ -4,11 +4,13 @@
 // kSegmentSlots samples in turn and walks every segment that starts in its chunk (at most one
 // per triangle: core::for_each_segment), so small triangles share a subgroup and large ones
 // spread over many. Candidates from Heitz's map, accepted against D_T^max; a walk that stops
-// after exact_after rejections in a row leaves the rest of its segment to exact draws from the
-// triangle's texel pieces. The same samples as the CPU backend's.
+// after exact_after rejections in a row lists its segment, and the exact pass
+// (realization_exact.comp) draws the rest of it from the triangle's texel pieces. Exact draws
+// live in a pass of their own so that their code costs this one nothing (registers, and
+// llvmpipe runs the pass 13 times slower with it inside). The same samples as the CPU backend's.
 #include "workgroup.glsl"
 #include "inverse_cdf.glsl"
-#include "piece_draw.glsl"
+#include "texel_pieces.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
 layout(push_constant) uniform Push { RealizationPush p; };
@@ -29,52 +31,18 @@ bool draw_candidate(uint64_t segment, uint64_t candidate, out Sample drawn) {
 
 #include "candidate_stream.glsl"
 
-// Slots filled .. slots - 1 of segment `segment` of the walked triangle, drawn exactly
-// (cpu::realize): the subgroup's lanes take one slot each, round after round, and walk the
-// triangle's pieces together for each attempt's piece (sweep_pieces), so that every lane finds
-// the piece the host finds. Call with the whole subgroup, the arguments subgroup-uniform.
-void draw_exactly(uint64_t segment, uint64_t first, uint filled, uint slots, inout WalkTally tally) {
-  uint lane = subgroupExclusiveAdd(1u);
-  uint width = subgroupAdd(1u);
-  PieceLattice l = piece_lattice(walked_texels);
-  uint64_t unused;
-  double total = sweep_pieces(l, walked_map, p.texels, false, 0.0lf, 0.0lf, unused);
-  if (total <= 0.0lf) {
-    // Counted density that clipping finds in no piece (an overlap of rounding's size): the
-    // slots give up, as at max_tries (cpu::realize).
-    for (uint slot = filled + lane; slot < slots; slot += width) {
-      Samples(p.samples + (first + uint64_t(slot)) * uint64_t(kSampleBytes)).v[0] =
-          Sample(walked_triangle, 1.0 / 3.0, 1.0 / 3.0);
-      tally.exhausted += 1ul;
-    }
-    return;
-  }
-  uvec2 key = uvec2(p.exact_key0, p.exact_key1);
-  for (uint round_first = filled; round_first < slots; round_first += width) {
-    uint slot = round_first + lane;
-    uint64_t k = segment * uint64_t(kSegmentSlots) + uint64_t(slot);
-    Sample x = Sample(walked_triangle, 0.0, 0.0);
-    bool landed = false;
-    uint attempts = 0u;
-    // Every lane takes part in each walk; those without a slot or done only look on.
-    while (subgroupAny(slot < slots && !landed && attempts < p.max_tries)) {
-      bool seeks = slot < slots && !landed && attempts < p.max_tries;
-      PieceWords w = piece_words(walked_triangle, k, attempts, key);
-      uint64_t j;
-      sweep_pieces(l, walked_map, p.texels, seeks, piece_target(w, total), total, j);
-      if (seeks) {
-        int64_t ix = l.x0 + int64_t(j % lattice_columns(l)), iy = l.y0 + int64_t(j / lattice_columns(l));
-        x = point_in_piece(walked_triangle, walked_texels, lattice_piece(l, ix, iy), ix, iy, w, landed);
-        ++attempts;
-      }
-    }
-    if (slot < slots) {
-      Samples(p.samples + (first + uint64_t(slot)) * uint64_t(kSampleBytes)).v[0] = x;
-      tally.candidates += uint64_t(attempts);
-      tally.exhausted += landed ? 0ul : 1ul;
-      tally.exact += 1ul;
-    }
-  }
+// Lists a stopped walk for the exact pass: one record per segment, by one lane.
+void list_stopped(uint position, uint64_t segment, uint filled) {
+  if (!subgroupElect()) return;
+  Uints list = Uints(p.stopped);
+  uint r = atomicAdd(list.v[0], 1u);
+  if (r >= list.v[1]) return;  // beyond the capacity, which holds every segment of a frame
+  uint at = kStoppedHeaderUints + r * kStoppedRecordUints;
+  uvec2 words = unpackUint2x32(segment);
+  list.v[at] = position;
+  list.v[at + 1u] = filled;
+  list.v[at + 2u] = words.x;
+  list.v[at + 3u] = words.y;
 }
 
 // The processing index of the triangle holding sample `sample_index`, searched within the guide
@@ -112,7 +80,7 @@ void main() {
       bool stop = p.exact_after > 0u && lattice_columns(l) * uint64_t(l.y1 - l.y0 + 1l) <= uint64_t(p.exact_cells);
       uint limit = stop ? min(p.max_tries, p.exact_after) : p.max_tries;
       uint filled = walk_segment(p.samples, segment, first, slots, limit, stop, tally);
-      if (filled < slots) draw_exactly(segment, first, filled, slots, tally);
+      if (filled < slots) list_stopped(position, segment, filled);
     }
   }
   count_tries(totals, tally);

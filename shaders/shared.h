@@ -149,7 +149,15 @@ struct RealizationPush {
   uint exact_key0, exact_key1;  // TRS: Philox key of the exact draws
   uint exact_after;   // TRS: rejections in a row that stop a segment's walk (0: never)
   uint exact_cells;   // TRS: the most lattice cells of a triangle drawn exactly (device limit)
+  uint64_t stopped;   // TRS: the segments whose walk stopped (StoppedSegments); 0: none listed
 };
+
+// The segments whose rejection walk stopped, which the exact pass then draws: a header of four
+// uints (the count, the capacity in records, two unused) and records of four uints (processing
+// index, slots filled, segment number's low and high words). The capacity holds every segment
+// of a frame, so no record is ever dropped.
+LS_CONST uint kStoppedHeaderUints = 4;
+LS_CONST uint kStoppedRecordUints = 4;
 
 LS_CONST uint kPlanTrs = 0u;        // N already in the totals: from the rounding pass, or (FRS) the host
 LS_CONST uint kPlanRejection = 1u;  // N: the target (or N-bar) rounded, if anything can be drawn

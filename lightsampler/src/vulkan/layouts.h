@@ -22,7 +22,7 @@ static_assert(sizeof(CountingPush) == 96 && offsetof(CountingPush, stale_maps) =
 static_assert(sizeof(RasterPush) == 72 && offsetof(RasterPush, origin_x) == 48 && offsetof(RasterPush, map) == 64);
 static_assert(sizeof(RoundingPush) == 48 && offsetof(RoundingPush, target) == 24 && offsetof(RoundingPush, key0) == 32);
 static_assert(sizeof(ScanPush) == 56 && offsetof(ScanPush, sum_bits) == 48 && offsetof(ScanPush, polls) == 52);
-static_assert(sizeof(RealizationPush) == 120 && offsetof(RealizationPush, piece_cdf) == 40 &&
+static_assert(sizeof(RealizationPush) == 128 && offsetof(RealizationPush, stopped) == 120 && offsetof(RealizationPush, piece_cdf) == 40 &&
               offsetof(RealizationPush, guide) == 80 && offsetof(RealizationPush, key0) == 88 &&
               offsetof(RealizationPush, max_tries) == 100 && offsetof(RealizationPush, exact_after) == 112);
 static_assert(sizeof(RejectionPush) == 80 && offsetof(RejectionPush, key0) == 56 && offsetof(RejectionPush, map) == 76);

@@ -11,6 +11,7 @@
 #include "spirv/naive_counting_comp.h"
 #include "spirv/naive_realization_comp.h"
 #include "spirv/realization_comp.h"
+#include "spirv/realization_exact_comp.h"
 #include "spirv/realization_guide_comp.h"
 #include "spirv/realization_plan_comp.h"
 #include "spirv/rejection_distribution_comp.h"
@@ -31,6 +32,7 @@ Pipelines::Pipelines(Context& c)
       realization_guide(c.create_compute(spirv::realization_guide_comp, sizeof(gpu::RealizationPush))),
       realization_plan(c.create_compute(spirv::realization_plan_comp, sizeof(gpu::PlanPush))),
       realization(c.create_compute(spirv::realization_comp, sizeof(gpu::RealizationPush))),
+      realization_exact(c.create_compute(spirv::realization_exact_comp, sizeof(gpu::RealizationPush))),
       rejection_distribution(c.create_compute(spirv::rejection_distribution_comp, sizeof(gpu::RejectionPush))),
       rejection(c.create_compute(spirv::rejection_comp, sizeof(gpu::RejectionPush))),
       frs(c.create_compute(spirv::frs_comp, sizeof(gpu::FrsPush))),

@@ -13,7 +13,7 @@ namespace lightsampler::vk {
 
 struct Pipelines {
   explicit Pipelines(Context& context);
-  ComputePipeline rounding, scan_local, scan_add, realization_guide, realization_plan, realization, rejection_distribution, rejection, frs, naive_counting,
+  ComputePipeline rounding, scan_local, scan_add, realization_guide, realization_plan, realization, realization_exact, rejection_distribution, rejection, frs, naive_counting,
       naive_realization;
 };
 

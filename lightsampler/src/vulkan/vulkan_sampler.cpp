@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
@@ -81,6 +82,7 @@ struct FrameBuffers {
   Buffer piece_cdf;        ///< naive stratification: double per lattice cell (GpuScene::piece_cells)
   Buffer totals_readback;  ///< host-visible copy of `totals`: shader atomics stay in device memory
   Buffer dispatch_args;    ///< realization's indirect workgroup counts, written by the plan pass
+  Buffer stopped;          ///< TRS: the segments whose walk stopped (gpu::kStoppedHeaderUints)
   Buffer stale_maps;       ///< uint per map: 1 where a partial count counts the map's triangles
 };
 
@@ -428,10 +430,15 @@ class VulkanSampler final : public Sampler {
                                 buffers_.totals.address(), 0, key[0], key[1], n_tri,
                                 device_max_tries(context_->device_name(), request.max_tries),
                                 exact_key[0], exact_key[1], naive ? 0 : request.exact_after,
-                                device_exact_cells(context_->device_name())};
+                                device_exact_cells(context_->device_name()), 0};
       if (request.vulkan.inverse_cdf && !naive && n_tri > 0) record_guide(c, push);
+      if (push.exact_after > 0) push.stopped = record_stopped_list(c, capacity, n_tri);
       record_realization(c, naive ? pipelines_.naive_realization : pipelines_.realization, push,
                          {.method = gpu::kPlanTrs}, capacity);
+      if (push.stopped != 0) {
+        c.dispatch(pipelines_.realization_exact, &push, sizeof push, kExactWorkgroups);
+        c.barrier();
+      }
       c.timestamp(to_string(Pass::realization));
     }
     return submit(c, frame);
@@ -497,6 +504,28 @@ class VulkanSampler final : public Sampler {
       c.timestamp(to_string(Pass::realization));
     }
     return submit(c, frame);
+  }
+
+  /// Workgroups of the exact pass, whose subgroups stride over the list of stopped segments: as
+  /// many as keep a large GPU busy when slivers stop many segments, few enough to cost nothing
+  /// when the list is empty.
+  static constexpr std::uint32_t kExactWorkgroups = 256;
+
+  /// Empties the list of stopped segments, grown to hold every segment of a frame of at most
+  /// `capacity` samples over `triangles` triangles (each segment starts in its own chunk of
+  /// kSegmentSlots samples or at a triangle's first slot), and returns its address.
+  std::uint64_t record_stopped_list(Commands& c, std::uint64_t capacity, std::uint32_t triangles) {
+    const std::uint64_t records = capacity / gpu::kSegmentSlots + triangles + 1;
+    if (records > std::numeric_limits<std::uint32_t>::max())
+      throw std::length_error("Vulkan backend: a frame of " + std::to_string(capacity) +
+                              " samples has more segments than the exact pass can list");
+    constexpr VkDeviceSize kUint = sizeof(std::uint32_t);
+    const VkDeviceSize bytes = (gpu::kStoppedHeaderUints + records * gpu::kStoppedRecordUints) * kUint;
+    if (!buffers_.stopped || buffers_.stopped.size() < bytes) buffers_.stopped = context_->create_buffer(bytes);
+    c.fill(buffers_.stopped, 0, kUint, 0);
+    c.fill(buffers_.stopped, kUint, kUint, std::uint32_t(records));
+    c.barrier();
+    return buffers_.stopped.address();
   }
 
   /// Builds realization's inverse CDF (the "Inverse CDF" ablation) and points `push` at it.
