@@ -43,6 +43,7 @@ void list_stopped(uint position, uint64_t segment, uint filled) {
   list.v[at + 1u] = filled;
   list.v[at + 2u] = words.x;
   list.v[at + 3u] = words.y;
+  atomicMax(list.v[kStoppedDispatch], min(r / gl_NumSubgroups + 1u, kExactWorkgroups));
 }
 
 // The processing index of the triangle holding sample `sample_index`, searched within the guide

@@ -152,12 +152,18 @@ struct RealizationPush {
   uint64_t stopped;   // TRS: the segments whose walk stopped (StoppedSegments); 0: none listed
 };
 
-// The segments whose rejection walk stopped, which the exact pass then draws: a header of four
-// uints (the count, the capacity in records, two unused) and records of four uints (processing
-// index, slots filled, segment number's low and high words). The capacity holds every segment
-// of a frame, so no record is ever dropped.
-LS_CONST uint kStoppedHeaderUints = 4;
+// The segments whose rejection walk stopped, which the exact pass then draws: a header of eight
+// uints (the count; the capacity in records; at kStoppedDispatch the exact pass's indirect
+// workgroup counts x, y, z, x raised as records arrive, so that an empty list dispatches
+// nothing; three unused) and records of four uints (processing index, slots filled, segment
+// number's low and high words). The capacity holds every segment of a frame, so no record is
+// ever dropped.
+LS_CONST uint kStoppedHeaderUints = 8;
+LS_CONST uint kStoppedDispatch = 2;
 LS_CONST uint kStoppedRecordUints = 4;
+// The exact pass's most workgroups, whose subgroups stride over the list: enough to keep a
+// large GPU busy when slivers stop many segments.
+LS_CONST uint kExactWorkgroups = 256;
 
 LS_CONST uint kPlanTrs = 0u;        // N already in the totals: from the rounding pass, or (FRS) the host
 LS_CONST uint kPlanRejection = 1u;  // N: the target (or N-bar) rounded, if anything can be drawn

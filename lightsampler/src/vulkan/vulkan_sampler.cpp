@@ -436,7 +436,8 @@ class VulkanSampler final : public Sampler {
       record_realization(c, naive ? pipelines_.naive_realization : pipelines_.realization, push,
                          {.method = gpu::kPlanTrs}, capacity);
       if (push.stopped != 0) {
-        c.dispatch(pipelines_.realization_exact, &push, sizeof push, kExactWorkgroups);
+        c.dispatch_indirect(pipelines_.realization_exact, &push, sizeof push, buffers_.stopped,
+                            gpu::kStoppedDispatch * sizeof(std::uint32_t));
         c.barrier();
       }
       c.timestamp(to_string(Pass::realization));
@@ -506,11 +507,6 @@ class VulkanSampler final : public Sampler {
     return submit(c, frame);
   }
 
-  /// Workgroups of the exact pass, whose subgroups stride over the list of stopped segments: as
-  /// many as keep a large GPU busy when slivers stop many segments, few enough to cost nothing
-  /// when the list is empty.
-  static constexpr std::uint32_t kExactWorkgroups = 256;
-
   /// Empties the list of stopped segments, grown to hold every segment of a frame of at most
   /// `capacity` samples over `triangles` triangles (each segment starts in its own chunk of
   /// kSegmentSlots samples or at a triangle's first slot), and returns its address.
@@ -522,8 +518,11 @@ class VulkanSampler final : public Sampler {
     constexpr VkDeviceSize kUint = sizeof(std::uint32_t);
     const VkDeviceSize bytes = (gpu::kStoppedHeaderUints + records * gpu::kStoppedRecordUints) * kUint;
     if (!buffers_.stopped || buffers_.stopped.size() < bytes) buffers_.stopped = context_->create_buffer(bytes);
+    // The count, the capacity, and the exact pass's workgroups: none until a walk stops.
     c.fill(buffers_.stopped, 0, kUint, 0);
     c.fill(buffers_.stopped, kUint, kUint, std::uint32_t(records));
+    c.fill(buffers_.stopped, gpu::kStoppedDispatch * kUint, kUint, 0);
+    c.fill(buffers_.stopped, (gpu::kStoppedDispatch + 1) * kUint, 2 * kUint, 1);
     c.barrier();
     return buffers_.stopped.address();
   }
