@@ -78,22 +78,19 @@ std::uint32_t accepted_on_triangle(const core::TexelTriangle& t, const core::Den
     y[l] = t.origin[1] + batch.b1[l] * t.edge1[1] + batch.b2[l] * t.edge2[1];
     in_range += int(x[l] > -kRange) & int(x[l] < kRange) & int(y[l] > -kRange) & int(y[l] < kRange);
   }
-  if (in_range == kLanes) {
-    alignas(64) std::uint32_t index[kLanes];
-    int inside = 0;
+  int inside = 0;
+  alignas(64) std::uint32_t index[kLanes];
+  if (in_range == kLanes)
     for (int l = 0; l < kLanes; ++l) {
       const std::int32_t tx = std::int32_t(x[l]), ty = std::int32_t(y[l]);  // truncated
       const auto ix = std::uint32_t(tx - int(float(tx) > x[l])), iy = std::uint32_t(ty - int(float(ty) > y[l]));
       inside += int(ix < map.width) & int(iy < map.height);
       index[l] = iy * map.width + ix;  // maps have at most 2^28 texels
     }
-    if (inside == kLanes)
-      for (int l = 0; l < kLanes; ++l) density[l] = map.texels[index[l]];
-    else
-      for (int l = 0; l < kLanes; ++l) density[l] = core::cell_value(map, core::floor_to_int(x[l]), core::floor_to_int(y[l]));
-  } else {
+  if (inside == kLanes)
+    for (int l = 0; l < kLanes; ++l) density[l] = map.texels[index[l]];
+  else  // some lane outside the map or the 32-bit range: the addressing of core::cell_value
     for (int l = 0; l < kLanes; ++l) density[l] = core::cell_value(map, core::floor_to_int(x[l]), core::floor_to_int(y[l]));
-  }
   std::uint32_t accepted = 0;
   for (int l = 0; l < kLanes; ++l) accepted |= std::uint32_t(batch.accept[l] * bound < density[l] * map.scale) << l;
   return accepted;
