@@ -77,8 +77,9 @@ std::vector<std::string> vulkan_devices() {
   std::vector<std::string> lines;
 #ifdef LIGHTSAMPLER_HAS_VULKAN
   for (const vk::DeviceInfo& d : vk::Context::devices()) {
-    std::string line = std::to_string(d.index) + ": " + d.name;
-    if (!d.suitable) line += " (unsuitable: " + d.missing + ")";
+    std::string line = std::to_string(d.index) + ": " + d.name + " (" + vk::type_name(d.type);
+    if (!d.driver.empty()) line += "; driver " + d.driver;
+    line += d.suitable ? ")" : "; unsuitable: " + d.missing + ")";
     lines.push_back(line);
   }
 #endif

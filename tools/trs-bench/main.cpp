@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/build_commit.h"
 #include "common/cli_options.h"
 #include "experiments.h"
 
@@ -230,7 +231,16 @@ int main(int argc, char** argv) {
   app.add_option("--csv", cl.csv,
                  "Write the results as CSV to FILE (rewritten atomically after each case)");
   app.add_flag("--quick", quick, "Smoke run: grid:5k, 256x256 maps, counts 1e3..1e5, 2 repeats");
+  bool list_devices = false;
+  app.add_flag("--list-devices", list_devices,
+               "Print the Vulkan devices (index, name, type, driver) and exit");
+  app.set_version_flag("--version", std::string("trs-bench, commit ") + trs::build_commit(),
+                       "Print the commit it was built from and exit");
   CLI11_PARSE(app, argc, argv);
+  if (list_devices) {
+    for (const auto& line : lightsampler::vulkan_devices()) std::cout << line << "\n";
+    return 0;
+  }
   if (quick) apply_quick(app, cl);
 
   try {

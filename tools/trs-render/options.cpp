@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/build_commit.h"
 #include "common/cli_options.h"
 
 namespace trs {
@@ -55,6 +56,7 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   app.config_formatter(std::make_shared<SettingsFile>());
   // A misspelt key would otherwise be dropped without a word, and the render not be the one asked for.
   app.allow_config_extras(CLI::config_extras_mode::error);
+  app.set_version_flag("--version", std::string("trs-render, commit ") + trs::build_commit(), "print the commit it was built from and exit");
   app.add_option("SCENE", options.scene, "glTF 2.0 scene (.gltf, .glb)")->required();
   // An option given twice takes its last value, so that a script can override its own defaults.
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
@@ -113,6 +115,9 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    std::cout << e.what() << "\n";
+    return 0;
   } catch (const CLI::ConfigError& e) {
     // CLI11 names the key, not the file it came from.
     std::cerr << "trs-render: error: " << app.get_option("--settings")->as<std::string>() << ": " << e.what()

@@ -26,7 +26,7 @@ struct RenderOptions {
 /// Exit status of a command line that is wrong (as opposed to inputs that are).
 inline constexpr int kUsageError = 2;
 
-/// The options, or the status to exit with at once (0 after --help, kUsageError after a usage
+/// The options, or the status to exit with at once (0 after --help or --version, kUsageError after a usage
 /// error, its message printed).
 std::variant<RenderOptions, int> parse_render_options(int argc, char** argv);
 

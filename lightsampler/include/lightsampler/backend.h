@@ -35,7 +35,7 @@ class VulkanUnavailable : public std::runtime_error {
 /// Whether this build of the library has the Vulkan backend.
 bool has_vulkan_backend();
 
-/// One line per Vulkan device: index, name, type, and what it lacks if unsuitable. Empty when
+/// One line per Vulkan device: index, name, type, driver, and what it lacks if unsuitable. Empty when
 /// Vulkan itself is unavailable, or the library was built without it.
 std::vector<std::string> vulkan_devices();
 

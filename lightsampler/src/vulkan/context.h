@@ -32,7 +32,11 @@ struct DeviceInfo {
   std::uint32_t index;  ///< position in vkEnumeratePhysicalDevices
   bool suitable;        ///< has every feature the sampler needs
   std::string missing;  ///< what it lacks, when not suitable
+  std::string driver;   ///< driver name and version, as the driver reports them (Vulkan 1.2)
 };
+
+/// "discrete GPU", "integrated GPU", "virtual GPU", "CPU" or "other".
+const char* type_name(VkPhysicalDeviceType type);
 
 struct ContextOptions {
   /// Device by name (case-insensitive substring) or index; empty: the environment variable

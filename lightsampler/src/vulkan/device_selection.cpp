@@ -10,8 +10,6 @@
 
 namespace lightsampler::vk {
 
-namespace {
-
 const char* type_name(VkPhysicalDeviceType type) {
   switch (type) {
     case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
@@ -21,6 +19,8 @@ const char* type_name(VkPhysicalDeviceType type) {
     default: return "other";
   }
 }
+
+namespace {
 
 int preference(VkPhysicalDeviceType type) {
   switch (type) {
@@ -85,7 +85,7 @@ DeviceSurvey survey(VkPhysicalDevice handle, std::uint32_t index, std::uint32_t 
   DeviceSurvey d;
   d.handle = handle;
   vkGetPhysicalDeviceProperties(handle, &d.properties);
-  d.info = {d.properties.deviceName, d.properties.deviceType, index, false, {}};
+  d.info = {d.properties.deviceName, d.properties.deviceType, index, false, {}, {}};
   d.api_version = std::min(d.properties.apiVersion, instance_api);
   if (d.api_version < VK_API_VERSION_1_2) {
     d.info.missing = "Vulkan 1.2 (it has " + std::to_string(VK_API_VERSION_MAJOR(d.api_version)) + "." +
@@ -107,13 +107,16 @@ DeviceSurvey survey(VkPhysicalDevice handle, std::uint32_t index, std::uint32_t 
   VkPhysicalDeviceConservativeRasterizationPropertiesEXT conservative_properties{
       .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_CONSERVATIVE_RASTERIZATION_PROPERTIES_EXT,
       .pNext = &maintenance3};
+  VkPhysicalDeviceDriverProperties driver{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES,
+                                          .pNext = conservative ? static_cast<void*>(&conservative_properties)
+                                                                : static_cast<void*>(&maintenance3)};
   VkPhysicalDeviceSubgroupProperties subgroup{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES,
-                                              .pNext = conservative ? static_cast<void*>(&conservative_properties)
-                                                                    : static_cast<void*>(&maintenance3)};
+                                              .pNext = &driver};
   VkPhysicalDeviceProperties2 properties2{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2,
                                           .pNext = &subgroup};
   vkGetPhysicalDeviceProperties2(handle, &properties2);
   d.subgroup_size = subgroup.subgroupSize;
+  d.info.driver = std::string(driver.driverName) + (driver.driverInfo[0] ? " " : "") + driver.driverInfo;
   // Counting needs every touched texel, so also those of triangles that snap to zero area.
   d.conservative_rasterization = conservative && conservative_properties.degenerateTrianglesRasterized;
   d.max_buffer_size = maintenance3.maxMemoryAllocationSize;
