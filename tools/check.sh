@@ -15,7 +15,7 @@ cmake -S . -B build-cpu-only -G Ninja -DCMAKE_BUILD_TYPE=Release -DLIGHTSAMPLER_
   -DLIGHTSAMPLER_BUILD_TOOLS=OFF
 cmake --build build-cpu-only
 ctest --test-dir build-cpu-only --output-on-failure --timeout 600 -j "$(nproc)"
-# Everything under AddressSanitizer and UndefinedBehaviorSanitizer (Clang), and all but the three
+# Everything under AddressSanitizer and UndefinedBehaviorSanitizer (Clang), and all but the four
 # longest tests under them (tools/sanitize.sh says which and why). Line tables are all that a
 # report needs, and build faster than full debug information.
 cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \

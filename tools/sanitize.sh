@@ -2,7 +2,7 @@
 # Runs the test suite of BUILD (default build-sanitize, configured with -DTRS_SANITIZE=ON; README
 # "Tests") under AddressSanitizer, LeakSanitizer and UndefinedBehaviorSanitizer, lavapipe
 # included. Any report fails its test, also from a tool that a test runs as a subprocess: those
-# exit 99, a status no test expects. Without --all, three tests are left out to keep CI within
+# exit 99, a status no test expects. Without --all, four tests are left out to keep CI within
 # its time; --all runs every test.
 #   tools/sanitize.sh [--all] [BUILD]
 set -euo pipefail
@@ -12,10 +12,12 @@ exclude=(
   # whose allocations all go through AddressSanitizer: over ten minutes on two cores, where every
   # other Vulkan test makes and drops samplers too.
   VulkanTest.TwoHundredSamplersComeAndGo
-  # Python drivers of the tools (trs-study: trs-render and trs-imgdiff; tools/figures: trs-bench
-  # and trs-sample), over two minutes each; the cli, render and smoke tests run those tools.
+  # Drivers of the tools (trs-study: trs-render and trs-imgdiff; tools/figures: trs-bench and
+  # trs-sample; the GPU report: all of them and the Vulkan tests), minutes each; the cli, render,
+  # smoke and vulkan tests run those tools and tests.
   trs_study
   figures_quick
+  gpu_report_quick
 )
 filter=(-E "^($(IFS='|'; echo "${exclude[*]}"))\$")
 if [ "${1:-}" = --all ]; then
