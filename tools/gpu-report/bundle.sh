@@ -26,7 +26,10 @@ done
 
 layer=/usr/lib/x86_64-linux-gnu/libVkLayer_khronos_validation.so
 manifest=/usr/share/vulkan/explicit_layer.d/VkLayer_khronos_validation.json
-[ -f "$layer" ] && [ -f "$manifest" ] || { echo "gpu-report --bundle: the validation layer is not installed (Debian: vulkan-validationlayers)" >&2; exit 1; }
+if [ ! -f "$layer" ] || [ ! -f "$manifest" ]; then
+  echo "gpu-report --bundle: the validation layer is not installed (Debian: vulkan-validationlayers)" >&2
+  exit 1
+fi
 cp "$layer" "$stage/layers/"
 sed 's#"library_path": *"[^"]*"#"library_path": "./libVkLayer_khronos_validation.so"#' "$manifest" \
   > "$stage/layers/VkLayer_khronos_validation.json"

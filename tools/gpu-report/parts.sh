@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # The parts of tools/gpu-report.sh, sourced by it. Each part writes under WORK/PART/ and records
 # each of its steps in WORK/PART/steps.tsv: name, status (ok, "failed (exit N)", cut: stopped at
 # the deadline, skipped: the deadline had passed), seconds.

@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Sourced by tools/gpu-report.sh to run from a bundle (--bundle): unpacks its libraries into
 # BUNDLE_LIBS (a temporary directory the caller removes) and points the loader and the programs
 # at them.
