@@ -205,13 +205,14 @@ class PowerDrawnUniformWeighed : public LightStrategy {
       : power_(strategy(emitters, StrategyKind::power)),
         uniform_(strategy(emitters, StrategyKind::uniform)) {}
   std::string name() const override { return "wrong"; }
-  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random) const override {
-    auto s = power_->sample(random);
-    if (s) s->pdf = s->mis_pdf = pdf(s->light, s->b1, s->b2);
+  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+                                    const ShadingPoint& at) const override {
+    auto s = power_->sample(random, at);
+    if (s) s->pdf = s->mis_pdf = pdf(s->light, s->b1, s->b2, at);
     return s;
   }
-  float pdf(std::uint32_t light, float b1, float b2) const override {
-    return uniform_->pdf(light, b1, b2);
+  float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
+    return uniform_->pdf(light, b1, b2, from);
   }
 
  private:
@@ -225,13 +226,14 @@ class TrsWithoutSetSize : public LightStrategy {
       : trs_(strategy(emitters, StrategyKind::trs, 1)) {}
   std::string name() const override { return "wrong"; }
   void begin_frame(std::uint64_t frame) override { trs_->begin_frame(frame); }
-  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random) const override {
-    auto s = trs_->sample(random);
+  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+                                    const ShadingPoint& at) const override {
+    auto s = trs_->sample(random, at);
     if (s) s->pdf = s->mis_pdf;
     return s;
   }
-  float pdf(std::uint32_t light, float b1, float b2) const override {
-    return trs_->pdf(light, b1, b2);
+  float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
+    return trs_->pdf(light, b1, b2, from);
   }
 
  private:

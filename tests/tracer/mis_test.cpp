@@ -46,6 +46,7 @@ TEST(Mis, LightAndBsdfWeightsSumToOne) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const glm::vec3 x(0.2f, 0.1f, 0.0f), n(0, 0, 1), wo = glm::normalize(glm::vec3(0.3f, -0.2f, 1));
+  const ShadingPoint at{x, n};
   const Bsdf bsdf({glm::vec3(0.7f), 0.3f, 0.4f}, n);
   for (StrategyKind kind :
        {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris}) {
@@ -53,9 +54,9 @@ TEST(Mis, LightAndBsdfWeightsSumToOne) {
     strategy->begin_frame(0);
     int checked = 0;
     for (int i = 0; i < 2000; ++i) {
-      const auto s = strategy->sample({std::uint32_t(rng()), std::uint32_t(rng()), std::uint32_t(rng())});
+      const auto s = strategy->sample({std::uint32_t(rng()), std::uint32_t(rng()), std::uint32_t(rng())}, at);
       ASSERT_TRUE(s.has_value());
-      ASSERT_EQ(s->mis_pdf, strategy->pdf(s->light, s->b1, s->b2)) << to_string(kind);
+      ASSERT_EQ(s->mis_pdf, strategy->pdf(s->light, s->b1, s->b2, at)) << to_string(kind);
       const glm::vec3 d = s->position - x;
       const float r = glm::length(d);
       const glm::vec3 wi = d / r;
@@ -69,7 +70,7 @@ TEST(Mis, LightAndBsdfWeightsSumToOne) {
       if (bsdf_pdf <= 0.0f || cos_light <= 0.0f) continue;  // only one technique reaches it
       // The light sample's weight, and the weight emitted() gives a BSDF hit there.
       const float light_pdf = solid_angle_density(s->mis_pdf, r, cos_light);
-      const float hit_pdf = solid_angle_density(strategy->pdf(s->light, s->b1, s->b2), r, cos_light);
+      const float hit_pdf = solid_angle_density(strategy->pdf(s->light, s->b1, s->b2, at), r, cos_light);
       EXPECT_NEAR(power_heuristic(light_pdf, bsdf_pdf) + power_heuristic(bsdf_pdf, hit_pdf), 1.0f,
                   1e-5f);
       ++checked;
@@ -86,6 +87,7 @@ TEST(Mis, PdfIsANormalisedAreaDensity) {
   const Emitters emitters(scene, trs_test::kCpuSampler);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  const ShadingPoint from{glm::vec3(0.2f, 0.1f, 0.0f), glm::vec3(0, 0, 1)};
   for (StrategyKind kind : {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs}) {
     auto strategy = make(emitters, kind);
     double integral = 0.0;
@@ -95,7 +97,7 @@ TEST(Mis, PdfIsANormalisedAreaDensity) {
       for (int i = 0; i < kPoints; ++i) {
         float b1 = u(rng), b2 = u(rng);
         if (b1 + b2 > 1.0f) b1 = 1.0f - b1, b2 = 1.0f - b2;
-        sum += strategy->pdf(light, b1, b2);
+        sum += strategy->pdf(light, b1, b2, from);
       }
       integral += sum / kPoints * emitters.area(light);
     }

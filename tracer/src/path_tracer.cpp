@@ -61,6 +61,10 @@ struct PathTracer::Vertex {
   Hit hit;
   SurfacePoint point;
   glm::vec3 wo;  ///< towards the previous vertex
+
+  /// Where the light strategy sees lights from: the light sample at this vertex and the BSDF
+  /// sample's hit from it weigh with the same point.
+  ShadingPoint shading_point() const { return {point.position, point.shading_normal}; }
 };
 
 PathTracer::PathTracer(const Scene& scene, const Geometry& geometry, const Emitters& emitters,
@@ -79,13 +83,14 @@ PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& ra
   glm::vec3& sum = out.radiance;
   glm::vec3 throughput(1.0f);
   float bsdf_pdf = 0.0f;  // of the direction that reached this vertex; unused for camera rays
+  ShadingPoint previous{};  // the vertex that direction left; unused for camera rays
   for (unsigned depth = 0;; ++depth) {
     const std::optional<Hit> hit = geometry_.intersect(ray, kInfinity);
     ++rays;
     if (!hit) break;
     const Vertex vertex{*hit, surface_point(scene_, *hit), -ray.direction};
     if (depth == 0) out.sees_emitter = emitters_.light_of(hit->triangle).has_value();
-    sum += throughput * emitted(vertex, bsdf_pdf, depth == 0);
+    sum += throughput * emitted(vertex, bsdf_pdf, depth == 0 ? nullptr : &previous);
     if (depth == max_depth_) break;
 
     const Material& material = scene_.materials[vertex.point.material];
@@ -101,19 +106,21 @@ PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& ra
     throughput *= s->weight;
     if (is_black(throughput)) break;
     bsdf_pdf = s->pdf;
+    previous = vertex.shading_point();
     ray = spawn(vertex.point.position, ng, s->wi);
   }
   return out;
 }
 
-/// Emission seen at a vertex, weighed against the light sample that could have found it.
-glm::vec3 PathTracer::emitted(const Vertex& vertex, float bsdf_pdf, bool camera_ray) const {
+/// Emission seen at a vertex, weighed against the light sample that could have found it from
+/// the vertex before (none for a camera ray).
+glm::vec3 PathTracer::emitted(const Vertex& vertex, float bsdf_pdf, const ShadingPoint* from) const {
   const std::optional<std::uint32_t> light = emitters_.light_of(vertex.hit.triangle);
   if (!light) return glm::vec3(0.0f);
   const glm::vec3 le = emitters_.radiance(*light, vertex.hit.b1, vertex.hit.b2, vertex.wo);
-  if (camera_ray || is_black(le)) return le;
+  if (!from || is_black(le)) return le;
   const float light_pdf = solid_angle_density(
-      strategy_.pdf(*light, vertex.hit.b1, vertex.hit.b2), vertex.hit.distance,
+      strategy_.pdf(*light, vertex.hit.b1, vertex.hit.b2, *from), vertex.hit.distance,
       glm::dot(vertex.wo, emitters_.normal(*light)));
   return le * power_heuristic(bsdf_pdf, light_pdf);
 }
@@ -158,6 +165,7 @@ glm::vec3 PathTracer::light_sample(const Vertex& vertex, const Bsdf& bsdf, PathR
                                    std::uint64_t& rays) const {
   std::optional<Connection> kept;
   float kept_weight = 0.0f, weight_sum = 0.0f;
+  const ShadingPoint at = vertex.shading_point();
   // In batches: a batch's candidates are fetched from memory together, then weighed.
   constexpr unsigned kBatch = 16;
   std::array<std::array<std::uint32_t, 4>, kBatch> words;
@@ -168,7 +176,7 @@ glm::vec3 PathTracer::light_sample(const Vertex& vertex, const Bsdf& bsdf, PathR
       strategy_.prefetch({words[i][0], words[i][1], words[i][2]});
     }
     for (unsigned i = 0; i < batch; ++i) {
-      const std::optional<LightSample> s = strategy_.sample({words[i][0], words[i][1], words[i][2]});
+      const std::optional<LightSample> s = strategy_.sample({words[i][0], words[i][1], words[i][2]}, at);
       if (!s) continue;
       std::optional<Connection> c = connect(vertex, bsdf, *s);
       if (!c) continue;

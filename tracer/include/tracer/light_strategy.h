@@ -45,6 +45,13 @@ static_assert(sizeof(LightSample) == 64);
 LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,
                         float pdf, float mis_pdf);
 
+/// Where lights are seen from: a shading point. Strategies that weigh lights by distance and
+/// orientation (the light tree) read it; the others draw the same whatever it is.
+struct ShadingPoint {
+  glm::vec3 position;
+  glm::vec3 normal;  ///< unit shading normal
+};
+
 struct LightFrame {
   double sampler_ms = 0.0;     ///< light-sampler time, milliseconds
   std::uint64_t lights = 0;    ///< point lights drawn
@@ -61,15 +68,16 @@ class LightStrategy {
   virtual std::string name() const = 0;
   /// Called before each frame's paths; `frame` numbers frames from 0.
   virtual void begin_frame(std::uint64_t frame) { (void)frame; }
-  /// A point on the lights from three independent uniform 32-bit words; none when the
-  /// lights have nothing to offer this frame.
-  virtual std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random) const = 0;
+  /// A point on the lights, seen from `at`, from three independent uniform 32-bit words; none
+  /// when the lights have nothing to offer this frame.
+  virtual std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+                                            const ShadingPoint& at) const = 0;
   /// Starts bringing what sample() will read for these words into the cache, so that a shading
   /// point's candidates wait for memory together rather than one after another.
   virtual void prefetch(const std::array<std::uint32_t, 3>& random) const { (void)random; }
-  /// Area density with which sample() picks a point of a light; what a BSDF-sampled hit on the
-  /// light weighs against.
-  virtual float pdf(std::uint32_t light, float b1, float b2) const = 0;
+  /// Area density with which sample(., from) picks a point of a light; what a BSDF-sampled hit
+  /// on the light, seen from `from`, weighs against.
+  virtual float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const = 0;
 
   /// What the light sampler did in the last frame (zeros for strategies without one).
   virtual LightFrame last_frame() const { return {}; }

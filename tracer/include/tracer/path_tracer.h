@@ -48,7 +48,8 @@ class PathTracer {
   struct Connection;
   std::optional<Connection> connect(const Vertex& vertex, const Bsdf& bsdf,
                                     const LightSample& light) const;
-  glm::vec3 emitted(const Vertex& vertex, float bsdf_pdf, bool camera_ray) const;
+  /// `from`: the vertex the BSDF sample left, where the light strategy would have been asked.
+  glm::vec3 emitted(const Vertex& vertex, float bsdf_pdf, const ShadingPoint* from) const;
   glm::vec3 light_sample(const Vertex& vertex, const Bsdf& bsdf, PathRandom& random,
                          std::uint64_t& rays) const;
 

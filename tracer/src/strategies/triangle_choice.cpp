@@ -21,8 +21,8 @@ TriangleChoice::TriangleChoice(const Emitters& emitters, std::span<const double>
   cdf_.back() = 1.0;
 }
 
-std::optional<LightSample> TriangleChoice::sample(
-    const std::array<std::uint32_t, 3>& random) const {
+std::optional<LightSample> TriangleChoice::sample(const std::array<std::uint32_t, 3>& random,
+                                                  const ShadingPoint&) const {
   const double u = lightsampler::uniform_double(random[0]);
   // The first light whose CDF exceeds u: zero-weight lights are never chosen.
   const auto light = std::uint32_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
@@ -33,6 +33,8 @@ std::optional<LightSample> TriangleChoice::sample(
   return light_point(emitters_, light, b.b1, b.b2, density, density);
 }
 
-float TriangleChoice::pdf(std::uint32_t light, float, float) const { return area_density_[light]; }
+float TriangleChoice::pdf(std::uint32_t light, float, float, const ShadingPoint&) const {
+  return area_density_[light];
+}
 
 }  // namespace tracer

@@ -79,7 +79,8 @@ class TrsStrategy : public LightStrategy {
     write_records();
   }
 
-  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random) const override {
+  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+                                    const ShadingPoint&) const override {
     if (records_.empty()) return std::nullopt;
     const LightSample& s = records_[index(random[0])];
     // A refined sampler's light, brought back to its triangle, can land an ulp across a texel
@@ -92,8 +93,8 @@ class TrsStrategy : public LightStrategy {
     if (!records_.empty()) __builtin_prefetch(&records_[index(random[0])]);
   }
 
-  float pdf(std::uint32_t light, float b1, float b2) const override {
-    return float(double(emitters_.density(light, b1, b2)) / emitters_.total_density());
+  float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint&) const override {
+    return density(light, b1, b2);
   }
 
   LightFrame last_frame() const override {
@@ -103,6 +104,11 @@ class TrsStrategy : public LightStrategy {
   std::string device() const override { return std::string(lightsampler::to_string(sampler_.backend())) + ": " + sampler_.device(); }
 
  private:
+  /// p(x) = D(x) / integral of D: the density the set has in expectation.
+  float density(std::uint32_t light, float b1, float b2) const {
+    return float(double(emitters_.density(light, b1, b2)) / emitters_.total_density());
+  }
+
   /// Lemire's multiply-shift: a light of the set, uniform over n < 2^32 with a bias below
   /// n / 2^32.
   std::size_t index(std::uint32_t word) const {
@@ -123,7 +129,7 @@ class TrsStrategy : public LightStrategy {
                       [&](const tbb::blocked_range<std::size_t>& range) {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
                           const lightsampler::Sample& s = samples[i];
-                          const float p = pdf(s.triangle, s.b1, s.b2);
+                          const float p = density(s.triangle, s.b1, s.b2);
                           records_[i] = light_point(emitters_, s.triangle, s.b1, s.b2, p * scale_, p);
                         }
                       });
