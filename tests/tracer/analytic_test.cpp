@@ -148,6 +148,19 @@ TEST_F(AnalyticQuad, EveryStrategyConvergesToTheQuadrature) {
   expect_every_strategy_agrees(*bench_, expected_, kEveryStrategy);
 }
 
+// `ris` over every strategy it can draw its candidates from.
+TEST_F(AnalyticQuad, RisConvergesWhereverItsCandidatesComeFrom) {
+  for (StrategyKind source : kEveryStrategy) {
+    if (!resamplable(source)) continue;
+    StrategyOptions o = options(StrategyKind::ris);
+    o.candidates_from = source;
+    auto s = make_light_strategy(*bench_->emitters, o);
+    const Estimate e = bench_->run(*s, 3, connection_candidates(o));
+    EXPECT_TRUE(trs_test::agrees(e, expected_, kSigmas, kQuadratureSlack))
+        << "ris over " << to_string(source) << "\n" << trs_test::describe(e, expected_);
+  }
+}
+
 // The lights of the Vulkan sampler, read back and resampled on the host like the CPU sampler's.
 // Skipped without a Vulkan device, unless LIGHTSAMPLER_REQUIRE_VULKAN=1.
 TEST(VulkanLights, TrsAndRisConvergeToTheQuadrature) {

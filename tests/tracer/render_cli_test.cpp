@@ -156,10 +156,13 @@ TEST_F(RenderCliTest, RendersEveryStrategy) {
     else
       EXPECT_GE(sampler_ms, 0.0);
     EXPECT_EQ(stats["light_records_ms_per_frame"].get<double>() > 0.0, point_lights);
-    if (strategy == "ris")
+    if (strategy == "ris") {
       EXPECT_EQ(settings["candidates"], 4);
-    else
+      EXPECT_EQ(settings["candidates_from"], "trs");
+    } else {
       EXPECT_TRUE(settings["candidates"].is_null());
+      EXPECT_TRUE(settings["candidates_from"].is_null());
+    }
   }
 }
 
@@ -361,6 +364,8 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
         tiny(kScene, {"--time", "-1", "--out", file("out.exr").string()}),
         tiny(kScene, {"--candidates", "4", "--out", file("out.exr").string()}),  // trs
         tiny(kScene, {"--strategy", "ris", "--candidates", "0", "--out", file("out.exr").string()}),
+        tiny(kScene, {"--candidates-from", "power", "--out", file("out.exr").string()}),  // trs
+        tiny(kScene, {"--strategy", "ris", "--candidates-from", "ris", "--out", file("out.exr").string()}),
         [&] {
           std::vector<std::string> bad_lights = tiny(kScene, {"--out", file("out.exr").string()});
           bad_lights.insert(bad_lights.end(), {"--lights", "many"});

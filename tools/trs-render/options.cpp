@@ -23,6 +23,13 @@ const std::map<std::string, tracer::StrategyKind> kStrategies = {
     {"trs", tracer::StrategyKind::trs},
     {"ris", tracer::StrategyKind::ris}};
 
+std::vector<std::string> resamplable_names() {
+  std::vector<std::string> result;
+  for (const auto& [name, kind] : kStrategies)
+    if (tracer::resamplable(kind)) result.push_back(name);
+  return result;
+}
+
 /// The settings file as CLI11 reads TOML, but a key without a value (`height = []`) is refused:
 /// CLI11 would hand the option an empty list, which its conversions index all the same.
 class SettingsFile : public CLI::ConfigTOML {
@@ -47,7 +54,8 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
       "trs-render");
   RenderOptions options;
   tracer::RenderSettings& r = options.render;
-  std::string strategy = "trs", backend = "auto", lights = "auto", out, stats, preview, variance, emitter_mask;
+  std::string strategy = "trs", candidates_from = "trs", backend = "auto", lights = "auto", out, stats,
+              preview, variance, emitter_mask;
   double time = 0.0;
   bool quiet = false;
 
@@ -77,8 +85,12 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
       ->check(CLI::IsMember(std::vector<std::string>{"auto"}) | kFiniteNonNegative)
       ->capture_default_str();
   app.add_option("--candidates", r.strategy.candidates,
-                 "ris: point lights resampled into each next-event connection")
+                 "ris: points resampled into each next-event connection")
       ->check(CLI::Range(1u, 1024u))
+      ->capture_default_str();
+  app.add_option("--candidates-from", candidates_from,
+                 "ris: the strategy its candidates come from")
+      ->check(CLI::IsMember(resamplable_names()))
       ->capture_default_str();
   app.add_option("--seed", r.seed, "random seed of the paths and the light sets")
       ->capture_default_str();
@@ -141,9 +153,12 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
     if (!spp_on_command_line) r.spp = std::numeric_limits<unsigned>::max();
   }
   r.strategy.kind = kStrategies.at(strategy);
-  if (app.count("--candidates") > 0 && r.strategy.kind != tracer::StrategyKind::ris) {
-    std::cerr << "trs-render: error: --candidates belongs to --strategy ris\n";
-    return kUsageError;
+  r.strategy.candidates_from = kStrategies.at(candidates_from);
+  for (const char* option : {"--candidates", "--candidates-from"}) {
+    if (app.count(option) > 0 && r.strategy.kind != tracer::StrategyKind::ris) {
+      std::cerr << "trs-render: error: " << option << " belongs to --strategy ris\n";
+      return kUsageError;
+    }
   }
   r.strategy.lights = lights == "auto" ? tracer::auto_lights(r.width, r.height, r.max_depth) : std::stod(lights);
   r.sampler.backend = kBackends.at(backend);

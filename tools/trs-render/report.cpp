@@ -119,6 +119,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"strategy", result.strategy},
         {"lights", r.strategy.lights},
         {"candidates", r.strategy.kind == tracer::StrategyKind::ris ? nlohmann::json(r.strategy.candidates) : nlohmann::json()},
+        {"candidates_from", r.strategy.kind == tracer::StrategyKind::ris ? nlohmann::json(tracer::to_string(r.strategy.candidates_from)) : nlohmann::json()},
         {"seed", r.seed},
         {"max_depth", r.max_depth},
         {"threads", r.threads},

@@ -6,17 +6,54 @@
 
 namespace tracer {
 
+namespace {
+
+/// `ris`: the points of another strategy, resampled per shading point by the path tracer
+/// (connection_candidates); as a strategy it is its source under another name.
+class Resampled : public LightStrategy {
+ public:
+  explicit Resampled(std::unique_ptr<LightStrategy> source) : source_(std::move(source)) {}
+  std::string name() const override { return "ris"; }
+  void begin_frame(std::uint64_t frame) override { source_->begin_frame(frame); }
+  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+                                    const ShadingPoint& at) const override {
+    return source_->sample(random, at);
+  }
+  void prefetch(const std::array<std::uint32_t, 3>& random) const override { source_->prefetch(random); }
+  float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
+    return source_->pdf(light, b1, b2, from);
+  }
+  LightFrame last_frame() const override { return source_->last_frame(); }
+  std::string device() const override { return source_->device(); }
+
+ private:
+  std::unique_ptr<LightStrategy> source_;
+};
+
+std::unique_ptr<LightStrategy> make_source(const Emitters& emitters, StrategyKind kind,
+                                           const StrategyOptions& options) {
+  switch (kind) {
+    case StrategyKind::uniform: return make_uniform_strategy(emitters);
+    case StrategyKind::power: return make_power_strategy(emitters);
+    case StrategyKind::trs: return make_trs_strategy(emitters, options);
+    case StrategyKind::ris: break;
+  }
+  throw std::invalid_argument("unknown light strategy");
+}
+
+}  // namespace
+
+bool resamplable(StrategyKind kind) { return kind != StrategyKind::ris; }
+
 std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,
                                                    const StrategyOptions& options) {
   if (emitters.count() == 0)
     throw std::invalid_argument("the scene has no emissive triangles to sample");
-  switch (options.kind) {
-    case StrategyKind::uniform: return make_uniform_strategy(emitters);
-    case StrategyKind::power: return make_power_strategy(emitters);
-    case StrategyKind::trs:
-    case StrategyKind::ris: return make_trs_strategy(emitters, options);
-  }
-  throw std::invalid_argument("unknown light strategy");
+  if (options.kind != StrategyKind::ris) return make_source(emitters, options.kind, options);
+  if (!resamplable(options.candidates_from))
+    throw std::invalid_argument(std::string("ris cannot draw its candidates from ") +
+                                to_string(options.candidates_from));
+  return std::make_unique<Resampled>(make_source(emitters, options.candidates_from, options));
 }
 
 LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,

@@ -75,7 +75,7 @@ lightsampler::SamplerOptions sampler_options(const RenderSettings& settings) {
   lightsampler::SamplerOptions options = settings.sampler;
   options.cpu.threads = settings.threads;
   // The subdivision speeds up drawing lights; the other strategies only read integrals and texels.
-  if (!draws_point_lights(settings.strategy.kind)) options.refinement = {};
+  if (!draws_point_lights(settings.strategy)) options.refinement = {};
   return options;
 }
 

@@ -88,20 +88,30 @@ class LightStrategy {
 /// ris: candidates per shading point when none is given (docs/noise.md, "Resampled lights").
 inline constexpr unsigned kDefaultCandidates = 4;
 
-/// `ris` draws the point lights of `trs` and resamples them per shading point (PathTracer).
+/// `ris` resamples the points of another strategy per shading point (PathTracer): by default
+/// the point lights of `trs`.
 enum class StrategyKind { uniform, power, trs, ris };
-
-/// Whether the strategy draws a set of point lights every frame.
-inline bool draws_point_lights(StrategyKind kind) {
-  return kind == StrategyKind::trs || kind == StrategyKind::ris;
-}
 
 struct StrategyOptions {
   StrategyKind kind = StrategyKind::trs;
-  double lights = 1e6;          ///< trs, ris: expected point lights per frame (N_target)
-  std::uint64_t seed = 0;       ///< trs, ris: frame f draws its set with a seed from (seed, f)
-  unsigned candidates = kDefaultCandidates;  ///< ris: lights resampled per shading point
+  double lights = 1e6;          ///< trs (and ris over it): expected point lights per frame (N_target)
+  std::uint64_t seed = 0;       ///< trs: frame f draws its set with a seed from (seed, f)
+  unsigned candidates = kDefaultCandidates;  ///< ris: points resampled per shading point
+  StrategyKind candidates_from = StrategyKind::trs;  ///< ris: the strategy its candidates come from
 };
+
+/// The strategy that draws the points: the one named, or for `ris` the one its candidates come from.
+inline StrategyKind source_kind(const StrategyOptions& options) {
+  return options.kind == StrategyKind::ris ? options.candidates_from : options.kind;
+}
+
+/// Whether the strategy draws a set of point lights every frame.
+inline bool draws_point_lights(const StrategyOptions& options) {
+  return source_kind(options) == StrategyKind::trs;
+}
+
+/// The strategies `ris` can draw its candidates from: any but itself.
+bool resamplable(StrategyKind kind);
 
 /// Light samples each next-event connection is resampled from (PathTracer): `candidates` for
 /// ris, one for the others.

@@ -55,7 +55,6 @@ class TrsStrategy : public LightStrategy {
   TrsStrategy(const Emitters& emitters, const StrategyOptions& options)
       : emitters_(emitters),
         sampler_(emitters.sampler()),
-        kind_(options.kind),
         target_(options.lights),
         seed_(options.seed) {
     if (!(emitters.total_density() > 0.0))
@@ -65,7 +64,7 @@ class TrsStrategy : public LightStrategy {
       throw std::invalid_argument("trs takes 1 to 2^32 - 1 lights per frame");
   }
 
-  std::string name() const override { return to_string(kind_); }
+  std::string name() const override { return "trs"; }
 
   void begin_frame(std::uint64_t frame) override {
     const std::uint64_t seed = lightsampler::mix64(seed_ ^ lightsampler::mix64(frame));
@@ -138,7 +137,6 @@ class TrsStrategy : public LightStrategy {
 
   const Emitters& emitters_;
   lightsampler::Sampler& sampler_;
-  StrategyKind kind_;
   double target_;
   std::uint64_t seed_;
   lightsampler::Frame frame_;
