@@ -151,6 +151,35 @@ class LightsSweep(unittest.TestCase):
             self.assertIn("trs, 4000 lights", (out / "summary.md").read_text())
 
 
+class StrategySpecs(unittest.TestCase):
+    """A strategy with options of its own (STRATEGY+OPTION=VALUE) is rendered with them and named
+    by its spec in the results."""
+
+    def test_a_spec_passes_its_options_and_names_its_rows(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            out = Path(tmp) / "specs"
+            spec = "ris+candidates-from=power+candidates=2"
+            args = [TOOLS.scene, "--out", out, "--render", TOOLS.render, "--strategies", f"uniform,{spec}",
+                    "--spp", "2", "--seeds", "1", "--reference-spp", "8", "--width", "32", "--height", "18",
+                    "--quiet"]
+            planned = study(*args, "--plan")
+            self.assertEqual(planned.returncode, 0, planned.stderr)
+            self.assertIn("--strategy ris --candidates-from power --candidates 2 --seed 1",
+                          planned.stdout.splitlines()[-1])
+            done = study(*args)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            with open(out / "results.csv") as f:
+                self.assertEqual(sorted(r["strategy"] for r in csv.DictReader(f)), [spec, "uniform"])
+            stats = json.loads((out / "images" / f"{spec}-spp2-seed1.json").read_text())
+            self.assertEqual(stats["settings"]["candidates_from"], "power")
+            self.assertEqual(stats["settings"]["candidates"], 2)
+
+    def test_a_malformed_spec_is_refused(self):
+        refused = study(TOOLS.scene, "--out", "unused", "--strategies", "ris+candidates-from", "--plan")
+        self.assertEqual(refused.returncode, 2)
+        self.assertIn("is not OPTION=VALUE", refused.stderr)
+
+
 if __name__ == "__main__":
     parser = argparse.ArgumentParser()
     for name in ["study", "render", "imgdiff", "scene"]:
