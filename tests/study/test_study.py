@@ -46,6 +46,8 @@ class Study(unittest.TestCase):
             self.assertEqual((self.out / name).read_bytes()[:8], b"\x89PNG\r\n\x1a\n", name)
         self.assertIn("lit pixels", (self.out / "summary.md").read_text())
         self.assertIn("## Mean over the lit pixels", (self.out / "summary.md").read_text())
+        self.assertIn("](convergence.png)", (self.out / "summary.md").read_text())
+        self.assertIn("](crops.png)", (self.out / "summary.md").read_text())
 
     def test_one_row_per_image_with_the_named_columns(self):
         rows = self.rows()
