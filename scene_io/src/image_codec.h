@@ -1,9 +1,12 @@
 #pragma once
-// The one interface between scene_io and the library that encodes and decodes image files
-// (image_codec_oiio.cpp: OpenImageIO). Everything around the codec (checks, messages naming the
-// file, colour decisions) is written once, in image_decoding.cpp and image_output.cpp. Decoding
-// takes two steps, header then pixels, so that a header is checked before anything is allocated
-// for its pixels.
+// The one interface between scene_io and the library that encodes and decodes image files. Each
+// build compiles one implementation (CMake option TRS_OPENIMAGEIO):
+// - image_codec_oiio.cpp: OpenImageIO, every format it reads, colour-space metadata honoured;
+// - image_codec_builtin.cpp: stb_image (PNG, JPEG, BMP, TGA, HDR, binary PNM...) and OpenEXR,
+//   no colour-space metadata read.
+// Everything around the codec (checks, messages naming the file, colour decisions) is written
+// once, in image_decoding.cpp and image_output.cpp. Decoding takes two steps, header then pixels,
+// so that a header is checked before anything is allocated for its pixels.
 
 #include <cstdint>
 #include <filesystem>

@@ -1,5 +1,5 @@
-// The image codec through OpenImageIO: every format it has a plugin for, and the colour space
-// its readers find in the metadata.
+// The image codec through OpenImageIO (TRS_OPENIMAGEIO=ON): every format it has a plugin for,
+// and the colour space its readers find in the metadata.
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
