@@ -1,5 +1,5 @@
-// Density maps through trs-sample's loading path (OpenImageIO, then decoding and validation). The
-// first byte picks the extension, so the corpus covers the formats users hand in.
+// Density maps through trs-sample's loading path (the image codec, then decoding and
+// validation). The first byte picks the extension, so the corpus covers the formats users hand in.
 #include "fuzz_input.h"
 #include "scene_io/density_io.h"
 

@@ -1,8 +1,8 @@
 // End-to-end tests of the trs-sample command line: the tool runs as a subprocess on small inputs
 // written by each test into a fresh temporary directory (meshes by hand, images with
-// OpenImageIO), and the tests read back its exit status, stdout, stderr and output files.
+// support/image_files.h), and the tests read back its exit status, stdout, stderr and output
+// files.
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,6 +18,7 @@
 
 #include "lightsampler/refinement.h"
 #include "support/gltf_quad.h"
+#include "support/image_files.h"
 #include "support/subprocess.h"
 
 namespace {
@@ -106,30 +107,28 @@ class CliTest : public trs_test::ToolTest {
  protected:
   CliTest() : ToolTest(TRS_SAMPLE_EXE, {"--threads", "2"}) {}
 
-  /// Writes an image of `channels` channels from float values, stored as `format`.
-  fs::path write_image(const std::string& name, int width, int height, int channels,
-                       const std::vector<float>& pixels,
-                       OIIO::TypeDesc format = OIIO::TypeDesc::FLOAT) {
-    const fs::path path = file(name);
-    auto out = OIIO::ImageOutput::create(path.string());
-    EXPECT_TRUE(out) << OIIO::geterror();
-    if (!out) return path;
-    const OIIO::ImageSpec spec(width, height, channels, format);
-    EXPECT_TRUE(out->open(path.string(), spec)) << out->geterror();
-    EXPECT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data())) << out->geterror();
-    out->close();
-    return path;
+  /// Writes a single-channel float OpenEXR map.
+  fs::path write_exr_map(const std::string& name, int width, int height,
+                         const std::vector<float>& texels) {
+    trs_test::write_float_exr(file(name), width, height, 1, texels);
+    return file(name);
   }
 
-  /// A 4 x 4 single-channel float map, `value` in the top row (row 0), zero elsewhere.
+  /// Writes an 8-bit PNG of `channels` channels.
+  fs::path write_png(const std::string& name, int width, int height, int channels,
+                     const std::vector<std::uint16_t>& samples) {
+    return write_text(name, trs_test::png_file(width, height, channels, 8, samples));
+  }
+
+  /// A 4 x 4 map, `value` in the top row (row 0), zero elsewhere.
   fs::path write_top_row_map(const std::string& name, float value) {
     std::vector<float> texels(16, 0.0f);
     for (int x = 0; x < 4; ++x) texels[x] = value;
-    return write_image(name, 4, 4, 1, texels);
+    return write_exr_map(name, 4, 4, texels);
   }
 
   fs::path write_constant_map(const std::string& name, float value) {
-    return write_image(name, 4, 4, 1, std::vector<float>(16, value));
+    return write_exr_map(name, 4, 4, std::vector<float>(16, value));
   }
 
   fs::path write_quad_gltf(const std::string& name) {
@@ -316,8 +315,8 @@ TEST_F(CliTest, TriangulatesConcavePolygons) {
 // 8-bit images are sRGB-encoded unless told otherwise; colour maps give their luminance.
 TEST_F(CliTest, DecodesSrgbAndTakesLuminance) {
   const fs::path mesh = write_text("quad.obj", kQuadObj);
-  const fs::path grey = write_image("grey.png", 1, 1, 1, {128.0f / 255.0f}, OIIO::TypeDesc::UINT8);
-  const fs::path red = write_image("red.png", 1, 1, 3, {1, 0, 0}, OIIO::TypeDesc::UINT8);
+  const fs::path grey = write_png("grey.png", 1, 1, 1, {128});
+  const fs::path red = write_png("red.png", 1, 1, 3, {255, 0, 0});
   auto expected_total = [&](const fs::path& map, const std::string& encoding) {
     const RunResult result = run({mesh, map, "--density-scale", "1000", "--map-encoding", encoding,
                                   "--stats", file("s.json")});
@@ -435,24 +434,25 @@ TEST_F(CliTest, BadGltfFiles) {
 TEST_F(CliTest, BadDensityMaps) {
   const fs::path mesh = write_text("quad.obj", kQuadObj);
 
-  std::vector<float> gradient(64 * 64 * 3);
-  for (std::size_t i = 0; i < gradient.size(); ++i) gradient[i] = float(i % 251) / 250.0f;
-  const fs::path png = write_image("truncated.png", 64, 64, 3, gradient, OIIO::TypeDesc::UINT8);
+  std::vector<std::uint16_t> gradient(64 * 64 * 3);
+  for (std::size_t i = 0; i < gradient.size(); ++i) gradient[i] = std::uint16_t(i % 251);
+  const fs::path png = write_png("truncated.png", 64, 64, 3, gradient);
   fs::resize_file(png, fs::file_size(png) / 2);
   expect_failure_naming({mesh, png}, png);
 
   std::vector<float> texels(16, 1.0f);
   texels[5] = std::numeric_limits<float>::quiet_NaN();
-  const fs::path nan = write_image("nan.exr", 4, 4, 1, texels);
+  const fs::path nan = write_exr_map("nan.exr", 4, 4, texels);
   expect_failure_naming({mesh, nan}, nan);
 
   texels[5] = -1.0f;
-  const fs::path negative = write_image("negative.exr", 4, 4, 1, texels);
+  const fs::path negative = write_exr_map("negative.exr", 4, 4, texels);
   expect_failure_naming({mesh, negative}, negative);
 
   // JPEG readers fill a truncated image with grey and only record the error.
-  const fs::path jpeg = write_image("truncated.jpg", 64, 64, 3, gradient, OIIO::TypeDesc::UINT8);
-  fs::resize_file(jpeg, fs::file_size(jpeg) / 2);
+  const std::vector<unsigned char> bytes(gradient.begin(), gradient.end());
+  const std::string jpeg_bytes = trs_test::jpeg_file(64, 64, bytes, 90);
+  const fs::path jpeg = write_text("truncated.jpg", jpeg_bytes.substr(0, jpeg_bytes.size() / 2));
   expect_failure_naming({mesh, jpeg}, jpeg);
 
   const fs::path not_an_image = write_text("garbage.png", "this is not an image");
@@ -460,10 +460,10 @@ TEST_F(CliTest, BadDensityMaps) {
 }
 
 // A header may claim any size: a map larger than 16384 x 16384 is refused before its pixels are
-// allocated (a PFM header of 100000 x 100000 with no pixels after it).
+// allocated (a binary PPM header of 100000 x 100000 with no pixels after it).
 TEST_F(CliTest, ImageHeadersClaimingHugeSizesAreRefused) {
   const fs::path mesh = write_text("quad.obj", kQuadObj);
-  const fs::path huge = write_text("huge.pfm", "Pf\n100000 100000\n-1.0\n");
+  const fs::path huge = write_text("huge.ppm", "P6\n100000 100000\n255\n");
   expect_failure_naming({mesh, huge}, huge);
   EXPECT_NE(run({mesh, huge}).err.find("100000 x 100000 texels, more than the 16384 x 16384"), std::string::npos);
 }
@@ -472,7 +472,7 @@ TEST_F(CliTest, FailedRunLeavesExistingOutputsUntouched) {
   const fs::path mesh = write_text("quad.obj", kQuadObj);
   std::vector<float> texels(16, 1.0f);
   texels[3] = -2.0f;
-  const fs::path bad_map = write_image("bad.exr", 4, 4, 1, texels);
+  const fs::path bad_map = write_exr_map("bad.exr", 4, 4, texels);
   const std::string old_ply = "previous samples\n", old_json = "{\"previous\": true}\n";
   write_file(file("out.ply"), old_ply);
   write_file(file("out.json"), old_json);

@@ -34,8 +34,8 @@ T load(const unsigned char* bytes) {
 }
 
 /// Keeps images undecoded: the loaders decode what they need themselves (the mesh loader nothing,
-/// the tracer through OpenImageIO). tinygltf hands over the bytes of external images too; those
-/// are dropped, as the image is read from its file.
+/// the tracer through scene_io's image codec). tinygltf hands over the bytes of external images
+/// too; those are dropped, as the image is read from its file.
 bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
                       const unsigned char* bytes, int size, void*) {
   if (image->uri.empty()) image->image.assign(bytes, bytes + size);

@@ -1,24 +1,20 @@
-// The tracer's scene input and image output: glTF scenes written by each test into a fresh
-// temporary directory (JSON with a .bin buffer, PNG and EXR textures written with OpenImageIO),
-// the colour module, and EXR/PNG outputs read back.
+// The tracer's scene input: glTF scenes written by each test into a fresh temporary directory
+// (JSON with a .bin buffer, PNG and EXR textures), and the colour module.
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "scene_io/color.h"
-#include "scene_io/file_error.h"
 #include "scene_io/image_output.h"
+#include "support/scratch_dir.h"
 #include "tracer/gltf_scene.h"
 
 namespace {
@@ -97,45 +93,9 @@ void expect_near(glm::vec3 actual, glm::vec3 expected, float tolerance = 1e-5f) 
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(actual[k], expected[k], tolerance) << "component " << k;
 }
 
-/// Throws unless `action` fails with a FileError naming `file` and saying `problem`.
-void expect_error(const std::function<void()>& action, const fs::path& file,
-                  const std::string& problem) {
-  try {
-    action();
-    ADD_FAILURE() << "no error; expected one naming " << file;
-  } catch (const trs::FileError& error) {
-    const std::string message = error.what();
-    EXPECT_NE(message.find(file.string() + ": "), std::string::npos) << message;
-    EXPECT_NE(message.find(problem), std::string::npos) << message;
-  }
-}
+using trs_test::expect_error;
 
-class SceneIoTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("scene_io_test-" + std::to_string(::getpid()) + "-" + test->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path file(const std::string& name) const { return dir_ / name; }
-
-  /// Writes `values`, 3 per pixel unless `channels` says otherwise.
-  fs::path write_image(const std::string& name, int width, int height, OIIO::TypeDesc format,
-                       const std::vector<float>& values, int channels = 3) {
-    const fs::path path = file(name);
-    auto out = OIIO::ImageOutput::create(path.string());
-    const OIIO::ImageSpec spec(width, height, channels, format);
-    EXPECT_TRUE(out && out->open(path.string(), spec) &&
-                out->write_image(OIIO::TypeDesc::FLOAT, values.data()) && out->close());
-    return path;
-  }
-
-  fs::path dir_;
-};
+class SceneIoTest : public trs_test::ScratchDirTest {};
 
 constexpr double kHalfSqrt2 = 0.70710678118654752;
 
@@ -208,9 +168,10 @@ TEST_F(SceneIoTest, PrimitiveWithoutNormalsGetsFaceNormalsBesideOneWithNormals) 
 
 TEST_F(SceneIoTest, MaterialsAndTextures) {
   // Texel 0 is sRGB 128 everywhere; texel 1 tells channels apart.
-  const std::vector<float> texels = {128 / 255.0f, 128 / 255.0f, 128 / 255.0f, 1.0f, 0.0f, 0.25f};
-  write_image("colour.png", 2, 1, OIIO::TypeDesc::UINT8, texels);
-  write_image("float.exr", 2, 1, OIIO::TypeDesc::FLOAT, {0.5f, 0.5f, 0.5f, 2.0f, 0.0f, 0.25f});
+  const std::vector<unsigned char> texels = {128, 128, 128, 255, 0, 64};
+  trs::write_png(file("colour.png"), 2, 1, texels.data());
+  const std::vector<float> float_texels = {0.5f, 0.5f, 0.5f, 2.0f, 0.0f, 0.25f};
+  trs::write_exr(file("float.exr"), 2, 1, float_texels.data());
   std::ifstream png_file(file("colour.png"), std::ios::binary);
   const std::string png((std::istreambuf_iterator<char>(png_file)), {});
 
@@ -311,7 +272,7 @@ TEST_F(SceneIoTest, ErrorsNameTheFileAtFault) {
 
   std::vector<float> texels(6, 0.5f);
   texels[4] = std::numeric_limits<float>::infinity();
-  write_image("inf.exr", 2, 1, OIIO::TypeDesc::FLOAT, texels);
+  trs::write_exr(file("inf.exr"), 2, 1, texels.data());
   gltf.doc["images"][0]["uri"] = "inf.exr";
   expect_error([&] { tracer::load_gltf_scene(gltf.write(dir_, "inf")); }, file("inf.exr"),
                "not finite");
@@ -365,62 +326,6 @@ TEST(Color, SrgbRoundTripAndReferencePoints) {
   EXPECT_NEAR(points[1], 0.215861f, 1e-5f);
   EXPECT_NEAR(points[2], 0.0031308f, 1e-6f);
   EXPECT_NEAR(points[3], 1.0f, 1e-6f);
-}
-
-TEST_F(SceneIoTest, ExrRoundTripIsExact) {
-  const std::vector<float> rgb = {0.0f, 1e-20f,      -3.5f, 65504.0f, 1e30f,
-                                  0.1f, 1.0f / 3.0f, 2.0f,  7.25f};
-  trs::write_exr(file("render.exr"), 3, 1, rgb.data());
-  const trs::Image image = trs::read_exr(file("render.exr"));
-  EXPECT_EQ(image.width, 3u);
-  EXPECT_EQ(image.height, 1u);
-  EXPECT_EQ(image.rgb, rgb);
-  EXPECT_FALSE(image.integer);
-
-  write_image("grey.exr", 2, 1, OIIO::TypeDesc::FLOAT, {0.25f, 4.0f}, 1);
-  EXPECT_EQ(trs::read_exr(file("grey.exr")).rgb,
-            (std::vector<float>{0.25f, 0.25f, 0.25f, 4.0f, 4.0f, 4.0f}));
-
-  trs::write_png_preview(file("preview.png"), 3, 1, rgb.data());
-  expect_error([&] { trs::read_exr(file("preview.png")); }, file("preview.png"), "not OpenEXR");
-  std::ofstream(file("garbage.exr")) << "not an image";
-  expect_error([&] { trs::read_exr(file("garbage.exr")); }, file("garbage.exr"), "cannot read");
-}
-
-TEST_F(SceneIoTest, PngPreviewIsSrgbEncodedAndClamped) {
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  const std::vector<float> rgb = {0.0f, 1.0f, 4.0f, -1.0f, nan, 0.18f, 0.5f, 0.0031308f, 0.25f};
-  trs::write_png_preview(file("preview.png"), 3, 1, rgb.data());
-  trs::write_png_preview(file("brighter.png"), 3, 1, rgb.data(), 1.0f);
-  auto read_bytes = [](const fs::path& path) {
-    auto in = OIIO::ImageInput::open(path.string());
-    std::vector<unsigned char> bytes(9);
-    EXPECT_TRUE(in && in->spec().nchannels == 3 && in->spec().format == OIIO::TypeDesc::UINT8 &&
-                in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, bytes.data()));
-    return bytes;
-  };
-  EXPECT_EQ(read_bytes(file("preview.png")),
-            (std::vector<unsigned char>{0, 255, 255, 0, 0, 118, 188, 10, 137}));
-  EXPECT_EQ(read_bytes(file("brighter.png"))[8], 188);  // 0.25 one stop up is 0.5
-}
-
-TEST_F(SceneIoTest, FailedWriteLeavesNoFile) {
-  const std::vector<float> rgb(12, 0.5f);
-  const fs::path nowhere = file("no-such-directory") / "render.exr";
-  expect_error([&] { trs::write_exr(nowhere, 2, 2, rgb.data()); }, nowhere, "temporary");
-  // libpng refuses images over a million pixels wide: the encoder fails after the temporary was
-  // created, and the previous file stays as it was.
-  std::ofstream(file("render.png")) << "previous";
-  const std::vector<float> wide(3 * 1'000'001, 0.5f);
-  expect_error([&] { trs::write_png_preview(file("render.png"), 1'000'001, 1, wide.data()); },
-               file("render.png"), "cannot encode");
-  expect_error([&] { trs::write_exr(file("empty.exr"), 0, 2, rgb.data()); }, file("empty.exr"),
-               "without pixels");
-  std::vector<fs::path> entries;
-  for (const auto& entry : fs::directory_iterator(dir_)) entries.push_back(entry.path());
-  EXPECT_EQ(entries, std::vector<fs::path>{file("render.png")});
-  std::ifstream previous(file("render.png"));
-  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(previous)), {}), "previous");
 }
 
 }  // namespace

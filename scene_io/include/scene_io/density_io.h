@@ -1,5 +1,6 @@
 #pragma once
-// Density maps from image files (EXR, HDR, PNG, JPEG, TIFF: anything OpenImageIO reads).
+// Density maps from image files (EXR, HDR, PNG, JPEG, TIFF: anything OpenImageIO reads; in a build
+// without it, the formats README's "Set-up" lists).
 
 #include <cstdint>
 #include <filesystem>
@@ -10,7 +11,8 @@
 namespace trs {
 
 /// How the file's values map to densities. `automatic`: 8- and 16-bit integer images are
-/// sRGB-encoded unless their metadata says linear (or non-colour data); float images are linear.
+/// sRGB-encoded unless their metadata says linear (or non-colour data; read with OpenImageIO
+/// only); float images are linear.
 enum class MapEncoding { automatic, srgb, linear };
 
 /// A density map loaded from a file: one linear value per texel, row 0 = the image's top row

@@ -1,7 +1,8 @@
 #pragma once
-// RGB images in and out of the tools, through OpenImageIO: the renderer's linear EXR outputs and
-// their sRGB PNG previews, written atomically (complete or not at all, like every output of the
-// tools), and images read back as RGB floats (renders to compare, textures).
+// RGB images in and out of the tools, through the build's image codec (OpenImageIO, or stb_image
+// and OpenEXR: TRS_OPENIMAGEIO): the renderer's linear EXR outputs and their sRGB PNG previews,
+// written atomically (complete or not at all, like every output of the tools), and images read
+// back as RGB floats (renders to compare, textures).
 
 #include <cstdint>
 #include <filesystem>
@@ -30,8 +31,9 @@ void write_exr(const std::filesystem::path& file, std::uint32_t width, std::uint
 void write_png_preview(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
                        const float* rgb, float exposure = 0.0f);
 
-/// Writes 8-bit RGB display values (3 per pixel, top row first) as they are, tagged sRGB: a
-/// false-colour map, say. Throws FileError naming `file`.
+/// Writes 8-bit RGB display values (3 per pixel, top row first) as they are, for an sRGB display
+/// (OpenImageIO tags the file sRGB; an untagged PNG means the same): a false-colour map, say.
+/// Throws FileError naming `file`.
 void write_png(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
                const unsigned char* rgb);
 
@@ -39,12 +41,12 @@ void write_png(const std::filesystem::path& file, std::uint32_t width, std::uint
 /// is an error, as comparing renders through an 8-bit file would compare its rounding.
 Image read_exr(const std::filesystem::path& file);
 
-/// Reads any image OpenImageIO decodes: the first subimage's R, G, B (grey repeated).
+/// Reads any image the codec decodes: the first subimage's R, G, B (grey repeated).
 Image read_image(const std::filesystem::path& file);
 
 /// The same for an image file's bytes embedded in `file` (a glTF buffer or data URI); `format`
-/// is an extension ("png", "jpeg") and `what` names the image in messages. Formats that
-/// OpenImageIO cannot read from memory are an error: nothing is written to disk.
+/// is an extension ("png", "jpeg") and `what` names the image in messages. Formats that the
+/// codec cannot read from memory are an error: nothing is written to disk.
 Image read_image(std::span<const unsigned char> bytes, const std::string& format,
                  const std::filesystem::path& file, const std::string& what);
 

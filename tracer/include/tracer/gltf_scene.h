@@ -18,10 +18,10 @@ namespace tracer {
 ///   file's materials.
 /// - Mirroring transforms (negative determinant) swap two corners of each triangle, so that the
 ///   front face stays counter-clockwise.
-/// - Textures are decoded with OpenImageIO, from their file or from the bytes embedded in the
-///   document; 8- and 16-bit colour textures (base colour, emissive) from sRGB to linear, float
-///   ones as they are, metallic-roughness as data. A texture used both as colour and as data is
-///   decoded once for each use. Only TEXCOORD_0 is read: a used texture on another set fails.
+/// - Textures are decoded with scene_io's image codec (OpenImageIO, or stb_image and OpenEXR),
+///   from their file or from the bytes embedded in the document; 8- and 16-bit colour textures
+///   (base colour, emissive) from sRGB to linear, float ones as they are, metallic-roughness as
+///   data. A texture used both as colour and as data is decoded once for each use. Only TEXCOORD_0 is read: a used texture on another set fails.
 /// - The camera is the first node with a camera, depth first; it must be perspective.
 ///
 /// Throws trs::FileError naming the file at fault (the glTF file, or a texture's own file) and
