@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds everything and runs the whole test suite (ctest); then builds
 # the library without its Vulkan backend and runs the tests of that configuration; then builds
-# everything with the sanitizers and runs the tests under them; then fuzzes the parsers of user
-# files for a fixed time each.
+# everything without OpenImageIO, runs its tests and the GPU report's quick run from its bundle;
+# then builds everything with the sanitizers and runs the tests under them; then fuzzes the
+# parsers of user files for a fixed time each.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/setup-debian.sh
@@ -15,6 +16,14 @@ cmake -S . -B build-cpu-only -G Ninja -DCMAKE_BUILD_TYPE=Release -DLIGHTSAMPLER_
   -DLIGHTSAMPLER_BUILD_TOOLS=OFF
 cmake --build build-cpu-only
 ctest --test-dir build-cpu-only --output-on-failure --timeout 600 -j "$(nproc)"
+# The build without OpenImageIO, which the GPU report carries to machines without the project's
+# packages: its tests, then the report's quick run from its bundle (tools/gpu-report.sh --bundle).
+cmake -S . -B build-noiio -G Ninja -DCMAKE_BUILD_TYPE=Release -DTRS_OPENIMAGEIO=OFF
+cmake --build build-noiio
+ctest --test-dir build-noiio --output-on-failure --timeout 600 -j "$(nproc)"
+bash tools/gpu-report.sh --bundle --build build-noiio
+cmake -D ROOT="$PWD" -D BUILD="$PWD/.device" -D OUT="$PWD/build-noiio/gpu-report-bundled" \
+  -P tests/gpu_report_quick.cmake
 # Everything under AddressSanitizer and UndefinedBehaviorSanitizer (Clang), and all but the four
 # longest tests under them (tools/sanitize.sh says which and why). Line tables are all that a
 # report needs, and build faster than full debug information.

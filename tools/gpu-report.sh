@@ -61,7 +61,9 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/gpu-report.XXXXXX")
 BUNDLE_LIBS=$(mktemp -d "${TMPDIR:-/tmp}/gpu-report-libraries.XXXXXX")
 trap 'rm -rf "$work" "$BUNDLE_LIBS"' EXIT
 # Results of earlier runs into the same OUT_DIR are kept; a part that runs again replaces its own.
-[ -f "$out/data.tar.gz" ] && tar -xzf "$out/data.tar.gz" -C "$work"
+if [ -f "$out/data.tar.gz" ]; then
+  tar -xzf "$out/data.tar.gz" -C "$work"
+fi
 if [ "$tables" = 1 ]; then
   publish "$work" "$out"
   exit 0
@@ -69,7 +71,9 @@ fi
 
 # A bundle brings its libraries, the validation layer and the loader; a build tree uses the
 # system's.
-[ -f "$build/libraries.tar.gz" ] && source "$root/tools/gpu-report/use_bundle.sh" "$build"
+if [ -f "$build/libraries.tar.gz" ]; then
+  source "$root/tools/gpu-report/use_bundle.sh" "$build"
+fi
 for program in "${report_programs[@]}"; do
   [ -x "$build/bin/$program" ] || { echo "gpu-report: $build/bin/$program is missing (build it, or name the build with --build)" >&2; exit 1; }
 done
