@@ -211,6 +211,8 @@ def section_tests(work):
         for message in sorted(set(messages))[:5]:
             details.append(f"- {step['step']}: `{message[:300]}`")
     text = table(("binary", "status", "passed", "failed", "skipped", "validation messages", "time"), rows)
+    text += ("\nA validation message fails the test it comes from, except in the tests that provoke "
+             "one on purpose (VulkanTest.ValidationReportsMisuse).\n")
     return text + ("\n" + "\n".join(details) + "\n" if details else "")
 
 
