@@ -80,4 +80,10 @@ std::optional<StrategyKind> parse_strategy(const std::string& name) {
   return std::nullopt;
 }
 
+const char* to_string(TreeImportance importance) {
+  return importance == TreeImportance::pbrt ? "pbrt" : "cycles";
+}
+
+const char* to_string(TreePower power) { return power == TreePower::exact ? "exact" : "image-mean"; }
+
 }  // namespace tracer

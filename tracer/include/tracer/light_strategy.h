@@ -92,6 +92,19 @@ inline constexpr unsigned kDefaultCandidates = 4;
 /// the point lights of `trs`.
 enum class StrategyKind { uniform, power, trs, ris };
 
+/// tree: how a node's importance for a shading point is estimated (tree_importance.h).
+enum class TreeImportance { pbrt, cycles };
+/// tree: the power each light is weighed with.
+enum class TreePower {
+  exact,       ///< its emitted power: the integral of its texels' luminance over it
+  image_mean,  ///< its area times the mean of its whole emission map, as pbrt-v4 takes it
+};
+
+struct TreeOptions {
+  TreeImportance importance = TreeImportance::pbrt;
+  TreePower power = TreePower::exact;
+};
+
 struct StrategyOptions {
   StrategyKind kind = StrategyKind::trs;
   double lights = 1e6;          ///< trs (and ris over it): expected point lights per frame (N_target)
@@ -125,5 +138,7 @@ std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,
 
 const char* to_string(StrategyKind kind);
 std::optional<StrategyKind> parse_strategy(const std::string& name);
+const char* to_string(TreeImportance importance);
+const char* to_string(TreePower power);
 
 }  // namespace tracer
