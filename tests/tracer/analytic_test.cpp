@@ -116,7 +116,8 @@ std::unique_ptr<LightStrategy> strategy(const Emitters& emitters, StrategyKind k
 }
 
 const std::vector<StrategyKind> kEveryStrategy = {StrategyKind::uniform, StrategyKind::power,
-                                                  StrategyKind::trs, StrategyKind::ris};
+                                                  StrategyKind::trs, StrategyKind::ris,
+                                                  StrategyKind::tree};
 
 /// Whether every strategy's estimate along the bench's ray agrees with the quadrature.
 void expect_every_strategy_agrees(const QuadOverPlane& bench, const glm::dvec3& expected,
@@ -158,6 +159,21 @@ TEST_F(AnalyticQuad, RisConvergesWhereverItsCandidatesComeFrom) {
     const Estimate e = bench_->run(*s, 3, connection_candidates(o));
     EXPECT_TRUE(trs_test::agrees(e, expected_, kSigmas, kQuadratureSlack))
         << "ris over " << to_string(source) << "\n" << trs_test::describe(e, expected_);
+  }
+}
+
+// The tree with each importance and each source of the lights' power: the emitter's two
+// triangles cover different halves of its texture, so that the whole map's mean misjudges them.
+TEST_F(AnalyticQuad, TreeConvergesWithEitherImportanceAndPower) {
+  for (TreeImportance importance : {TreeImportance::pbrt, TreeImportance::cycles}) {
+    for (TreePower power : {TreePower::exact, TreePower::image_mean}) {
+      StrategyOptions o = options(StrategyKind::tree);
+      o.tree = {importance, power};
+      auto s = make_light_strategy(*bench_->emitters, o);
+      const Estimate e = bench_->run(*s, 5);
+      EXPECT_TRUE(trs_test::agrees(e, expected_, kSigmas, kQuadratureSlack))
+          << to_string(importance) << ", " << to_string(power) << "\n" << trs_test::describe(e, expected_);
+    }
   }
 }
 

@@ -30,7 +30,7 @@ using trs_test::RunResult;
 using trs_test::write_file;
 
 const fs::path kScene = fs::path(TRS_SCENES_DIR) / "neon-sign" / "neon-sign.gltf";
-const std::vector<std::string> kStrategies = {"uniform", "power", "trs", "ris"};
+const std::vector<std::string> kStrategies = {"uniform", "power", "trs", "ris", "tree"};
 
 nlohmann::json read_json(const fs::path& file) { return nlohmann::json::parse(read_file(file)); }
 
@@ -163,6 +163,35 @@ TEST_F(RenderCliTest, RendersEveryStrategy) {
       EXPECT_TRUE(settings["candidates"].is_null());
       EXPECT_TRUE(settings["candidates_from"].is_null());
     }
+    if (strategy == "tree") {
+      EXPECT_EQ(settings["tree_importance"], "pbrt");
+      EXPECT_EQ(settings["tree_power"], "exact");
+      EXPECT_GE(stats["light_structure"]["build_ms"].get<double>(), 0.0);
+      EXPECT_GT(stats["light_structure"]["bytes"].get<double>(), 0.0);
+    } else {
+      EXPECT_TRUE(settings["tree_importance"].is_null());
+      EXPECT_TRUE(settings["tree_power"].is_null());
+      EXPECT_TRUE(stats["light_structure"].is_null());
+    }
+  }
+}
+
+// The tree's options, and ris over the tree, which reports the tree's structure.
+TEST_F(RenderCliTest, TreeOptions) {
+  const fs::path settings = write_text("tree.toml", "tree-importance = \"cycles\"\ntree-power = \"image-mean\"\n");
+  for (const std::vector<std::string>& extra :
+       {std::vector<std::string>{"--strategy", "tree", "--settings", settings.string()},
+        std::vector<std::string>{"--strategy", "ris", "--candidates-from", "tree", "--tree-importance", "cycles",
+                                 "--tree-power", "image-mean"}}) {
+    std::vector<std::string> args = {"--out", file("tree.exr").string(), "--stats", file("tree.json").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult result = run(tiny(kScene, args));
+    ASSERT_EQ(result.status, 0) << result.err;
+    EXPECT_NE(result.out.find("light structure: built in"), std::string::npos) << result.out;
+    const nlohmann::json stats = read_json(file("tree.json"));
+    EXPECT_EQ(stats["settings"]["tree_importance"], "cycles");
+    EXPECT_EQ(stats["settings"]["tree_power"], "image-mean");
+    EXPECT_GT(stats["light_structure"]["bytes"].get<double>(), 0.0);
   }
 }
 
@@ -366,6 +395,10 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
         tiny(kScene, {"--strategy", "ris", "--candidates", "0", "--out", file("out.exr").string()}),
         tiny(kScene, {"--candidates-from", "power", "--out", file("out.exr").string()}),  // trs
         tiny(kScene, {"--strategy", "ris", "--candidates-from", "ris", "--out", file("out.exr").string()}),
+        tiny(kScene, {"--tree-importance", "cycles", "--out", file("out.exr").string()}),  // trs
+        tiny(kScene, {"--strategy", "ris", "--tree-power", "exact", "--out", file("out.exr").string()}),  // over trs
+        tiny(kScene, {"--strategy", "tree", "--tree-importance", "exact", "--out", file("out.exr").string()}),
+        tiny(kScene, {"--strategy", "tree", "--tree-power", "mean", "--out", file("out.exr").string()}),
         [&] {
           std::vector<std::string> bad_lights = tiny(kScene, {"--out", file("out.exr").string()});
           bad_lights.insert(bad_lights.end(), {"--lights", "many"});

@@ -21,7 +21,14 @@ const std::map<std::string, tracer::StrategyKind> kStrategies = {
     {"uniform", tracer::StrategyKind::uniform},
     {"power", tracer::StrategyKind::power},
     {"trs", tracer::StrategyKind::trs},
-    {"ris", tracer::StrategyKind::ris}};
+    {"ris", tracer::StrategyKind::ris},
+    {"tree", tracer::StrategyKind::tree}};
+
+const std::map<std::string, tracer::TreeImportance> kTreeImportances = {
+    {"pbrt", tracer::TreeImportance::pbrt}, {"cycles", tracer::TreeImportance::cycles}};
+
+const std::map<std::string, tracer::TreePower> kTreePowers = {
+    {"exact", tracer::TreePower::exact}, {"image-mean", tracer::TreePower::image_mean}};
 
 std::vector<std::string> resamplable_names() {
   std::vector<std::string> result;
@@ -48,14 +55,15 @@ class SettingsFile : public CLI::ConfigTOML {
 std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   CLI::App app(
       "Renders a glTF 2.0 scene lit by its emissive textures with a path tracer whose next-event "
-      "estimation samples lights uniformly by area, by triangle power, or from millions of point "
-      "lights drawn every frame by Triangle Rejection Sampling, used as they are (trs) or "
-      "resampled per shading point by their unshadowed contribution (ris).",
+      "estimation samples lights uniformly by area, by triangle power, by a light tree that weighs "
+      "them for each shading point (tree), or from millions of point lights drawn every frame by "
+      "Triangle Rejection Sampling, used as they are (trs) or resampled per shading point by their "
+      "unshadowed contribution (ris).",
       "trs-render");
   RenderOptions options;
   tracer::RenderSettings& r = options.render;
-  std::string strategy = "trs", candidates_from = "trs", backend = "auto", lights = "auto", out, stats,
-              preview, variance, emitter_mask;
+  std::string strategy = "trs", candidates_from = "trs", tree_importance = "pbrt", tree_power = "exact",
+              backend = "auto", lights = "auto", out, stats, preview, variance, emitter_mask;
   double time = 0.0;
   bool quiet = false;
 
@@ -91,6 +99,16 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   app.add_option("--candidates-from", candidates_from,
                  "ris: the strategy its candidates come from")
       ->check(CLI::IsMember(resamplable_names()))
+      ->capture_default_str();
+  app.add_option("--tree-importance", tree_importance,
+                 "tree: how a node's importance for a shading point is estimated: pbrt (pbrt-v4's), "
+                 "or cycles (Cycles' lower and upper bounds, averaged)")
+      ->check(CLI::IsMember(names(kTreeImportances)))
+      ->capture_default_str();
+  app.add_option("--tree-power", tree_power,
+                 "tree: each light's power: exact (its texels' integral), or image-mean (its area "
+                 "times the mean of its whole emission map, as pbrt-v4 takes it)")
+      ->check(CLI::IsMember(names(kTreePowers)))
       ->capture_default_str();
   app.add_option("--seed", r.seed, "random seed of the paths and the light sets")
       ->capture_default_str();
@@ -157,6 +175,13 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   for (const char* option : {"--candidates", "--candidates-from"}) {
     if (app.count(option) > 0 && r.strategy.kind != tracer::StrategyKind::ris) {
       std::cerr << "trs-render: error: " << option << " belongs to --strategy ris\n";
+      return kUsageError;
+    }
+  }
+  r.strategy.tree = {kTreeImportances.at(tree_importance), kTreePowers.at(tree_power)};
+  for (const char* option : {"--tree-importance", "--tree-power"}) {
+    if (app.count(option) > 0 && tracer::source_kind(r.strategy) != tracer::StrategyKind::tree) {
+      std::cerr << "trs-render: error: " << option << " belongs to --strategy tree (or ris over it)\n";
       return kUsageError;
     }
   }

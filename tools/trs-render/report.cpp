@@ -62,6 +62,12 @@ SamplerTimes sampler_times(const tracer::RenderResult& result) {
 
 double per_second(double count, double seconds) { return seconds > 0.0 ? count / seconds : 0.0; }
 
+/// The strategy's structure over the lights; null for strategies without one.
+nlohmann::json light_structure(const tracer::StrategySetup& setup) {
+  if (setup.bytes == 0) return nullptr;
+  return {{"build_ms", setup.build_ms}, {"bytes", setup.bytes}};
+}
+
 }  // namespace
 
 ProgressBar::ProgressBar(bool enabled, std::optional<double> budget_seconds)
@@ -107,6 +113,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
   for (const tracer::LightFrame& f : result.light_frames) ms.push_back(f.sampler_ms);
   nlohmann::json passes = nlohmann::json::object();
   for (const lightsampler::PassTime& p : sampler.passes) passes[lightsampler::to_string(p.pass)] = p.ms;
+  const bool tree = tracer::source_kind(r.strategy) == tracer::StrategyKind::tree;
   return {
       {"settings",
        {{"scene", options.scene.string()},
@@ -120,6 +127,8 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"lights", r.strategy.lights},
         {"candidates", r.strategy.kind == tracer::StrategyKind::ris ? nlohmann::json(r.strategy.candidates) : nlohmann::json()},
         {"candidates_from", r.strategy.kind == tracer::StrategyKind::ris ? nlohmann::json(tracer::to_string(r.strategy.candidates_from)) : nlohmann::json()},
+        {"tree_importance", tree ? nlohmann::json(tracer::to_string(r.strategy.tree.importance)) : nlohmann::json()},
+        {"tree_power", tree ? nlohmann::json(tracer::to_string(r.strategy.tree.power)) : nlohmann::json()},
         {"seed", r.seed},
         {"max_depth", r.max_depth},
         {"threads", r.threads},
@@ -128,6 +137,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
       {"frames", result.frames},
       {"interrupted", result.interrupted},
       {"light_sampler", result.light_device},
+      {"light_structure", light_structure(result.light_structure)},
       {"wall_seconds", wall_seconds},
       {"setup_seconds", result.setup_seconds},
       {"render_seconds", result.render_seconds},
@@ -162,6 +172,11 @@ void print_summary(std::ostream& out, const RenderOptions& options,
                 per_second(double(result.paths), result.render_seconds),
                 per_second(double(result.rays), result.render_seconds));
   out << line;
+  if (result.light_structure.bytes > 0) {
+    std::snprintf(line, sizeof line, "  light structure: built in %.2f ms, %.3g MiB\n",
+                  result.light_structure.build_ms, double(result.light_structure.bytes) / (1 << 20));
+    out << line;
+  }
   if (!result.light_device.empty()) {
     std::snprintf(line, sizeof line,
                   "  light sampler (%s): %.3g lights and %.2f ms per frame (median %.2f ms)\n",

@@ -66,7 +66,12 @@ void Emitters::add_emission(const Scene& scene, const Material& material) {
       e.radiance.push_back(glm::max(texel * material.emissive_factor, glm::vec3(0.0f)));
   }
   e.luminance.reserve(e.radiance.size());
-  for (const glm::vec3& radiance : e.radiance) e.luminance.push_back(luminance(radiance));
+  double sum = 0.0;
+  for (const glm::vec3& radiance : e.radiance) {
+    e.luminance.push_back(luminance(radiance));
+    sum += e.luminance.back();
+  }
+  e.mean_density = sum / double(e.luminance.size()) * e.strength;
   emissions_.push_back(std::move(e));
 }
 
@@ -116,9 +121,13 @@ float Emitters::density(std::uint32_t light, float b1, float b2) const {
 }
 
 glm::vec3 Emitters::position(std::uint32_t light, float b1, float b2) const {
-  const float* p = &positions_[9 * std::size_t(light)];
-  const glm::vec3 p0(p[0], p[1], p[2]), p1(p[3], p[4], p[5]), p2(p[6], p[7], p[8]);
+  const auto [p0, p1, p2] = vertices(light);
   return (1.0f - b1 - b2) * p0 + b1 * p1 + b2 * p2;
+}
+
+std::array<glm::vec3, 3> Emitters::vertices(std::uint32_t light) const {
+  const float* p = &positions_[9 * std::size_t(light)];
+  return {glm::vec3(p[0], p[1], p[2]), glm::vec3(p[3], p[4], p[5]), glm::vec3(p[6], p[7], p[8])};
 }
 
 }  // namespace tracer

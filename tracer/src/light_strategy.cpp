@@ -25,6 +25,7 @@ class Resampled : public LightStrategy {
   }
   LightFrame last_frame() const override { return source_->last_frame(); }
   std::string device() const override { return source_->device(); }
+  StrategySetup setup() const override { return source_->setup(); }
 
  private:
   std::unique_ptr<LightStrategy> source_;
@@ -36,6 +37,7 @@ std::unique_ptr<LightStrategy> make_source(const Emitters& emitters, StrategyKin
     case StrategyKind::uniform: return make_uniform_strategy(emitters);
     case StrategyKind::power: return make_power_strategy(emitters);
     case StrategyKind::trs: return make_trs_strategy(emitters, options);
+    case StrategyKind::tree: return make_tree_strategy(emitters, options);
     case StrategyKind::ris: break;
   }
   throw std::invalid_argument("unknown light strategy");
@@ -69,15 +71,22 @@ const char* to_string(StrategyKind kind) {
     case StrategyKind::power: return "power";
     case StrategyKind::trs: return "trs";
     case StrategyKind::ris: return "ris";
+    case StrategyKind::tree: return "tree";
   }
   return "?";
 }
 
 std::optional<StrategyKind> parse_strategy(const std::string& name) {
   for (StrategyKind kind :
-       {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris})
+       {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris, StrategyKind::tree})
     if (name == to_string(kind)) return kind;
   return std::nullopt;
 }
+
+const char* to_string(TreeImportance importance) {
+  return importance == TreeImportance::pbrt ? "pbrt" : "cycles";
+}
+
+const char* to_string(TreePower power) { return power == TreePower::exact ? "exact" : "image-mean"; }
 
 }  // namespace tracer

@@ -129,6 +129,7 @@ RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& pro
   result.setup_seconds = s.setup_seconds;
   result.strategy = s.strategy->name();
   result.light_device = s.strategy->device();
+  result.light_structure = s.strategy->setup();
   Accumulator sums(pixels);
   std::vector<PathEstimate> frame(pixels);
   tbb::combinable<std::uint64_t> rays, invalid;

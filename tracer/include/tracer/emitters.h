@@ -7,6 +7,7 @@
 // the texel the sampler names (Sampler::texel), nearest-texel, so that wherever radiance is
 // non-zero the density is too, and a light's pdf and its radiance always come from one texel.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -46,8 +47,13 @@ class Emitters {
   double total_density() const { return total_density_; }
   /// The integral of the density over each light (N-bar_T): its emitted power, in luminance.
   std::span<const double> light_density() const { return light_density_; }
+  /// The density a light's emission map has on average over the whole map, whatever part of it
+  /// the light's UVs cover: mean texel luminance times strength.
+  double mean_density(std::uint32_t light) const { return emissions_[light_maps_[light]].mean_density; }
 
   glm::vec3 position(std::uint32_t light, float b1, float b2) const;
+  /// The light's corners, in the order its barycentrics weigh them (b1: second, b2: third).
+  std::array<glm::vec3, 3> vertices(std::uint32_t light) const;
   /// Unit geometric normal, front face by counter-clockwise winding.
   glm::vec3 normal(std::uint32_t light) const { return normals_[light]; }
   float area(std::uint32_t light) const { return areas_[light]; }
@@ -69,6 +75,7 @@ class Emitters {
     lightsampler::Addressing addressing = lightsampler::Addressing::wrap;
     float strength = 1.0f;
     bool double_sided = false;
+    double mean_density = 0.0;  ///< mean of `luminance` times strength
   };
   void add_emission(const Scene& scene, const Material& material);
   void add_light(const Scene& scene, std::uint32_t triangle, std::uint32_t emission);

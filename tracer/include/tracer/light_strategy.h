@@ -3,6 +3,7 @@
 // small file in src/strategies/.
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -61,6 +62,13 @@ struct LightFrame {
   double records_ms = 0.0;     ///< writing the lights' records, milliseconds
 };
 
+/// What a strategy built before the first frame, for reports: zeros for strategies without a
+/// structure of their own.
+struct StrategySetup {
+  double build_ms = 0;     ///< time to build it, milliseconds
+  std::size_t bytes = 0;   ///< memory it holds
+};
+
 class LightStrategy {
  public:
   virtual ~LightStrategy() = default;
@@ -83,6 +91,8 @@ class LightStrategy {
   virtual LightFrame last_frame() const { return {}; }
   /// The sampler's backend and device, for reports; empty for strategies without one.
   virtual std::string device() const { return {}; }
+  /// The structure the strategy built over the lights (the light tree's).
+  virtual StrategySetup setup() const { return {}; }
 };
 
 /// ris: candidates per shading point when none is given (docs/noise.md, "Resampled lights").
@@ -90,7 +100,20 @@ inline constexpr unsigned kDefaultCandidates = 4;
 
 /// `ris` resamples the points of another strategy per shading point (PathTracer): by default
 /// the point lights of `trs`.
-enum class StrategyKind { uniform, power, trs, ris };
+enum class StrategyKind { uniform, power, trs, ris, tree };
+
+/// tree: how a node's importance for a shading point is estimated (tree_importance.h).
+enum class TreeImportance { pbrt, cycles };
+/// tree: the power each light is weighed with.
+enum class TreePower {
+  exact,       ///< its emitted power: the integral of its texels' luminance over it
+  image_mean,  ///< its area times the mean of its whole emission map, as pbrt-v4 takes it
+};
+
+struct TreeOptions {
+  TreeImportance importance = TreeImportance::pbrt;
+  TreePower power = TreePower::exact;
+};
 
 struct StrategyOptions {
   StrategyKind kind = StrategyKind::trs;
@@ -98,6 +121,7 @@ struct StrategyOptions {
   std::uint64_t seed = 0;       ///< trs: frame f draws its set with a seed from (seed, f)
   unsigned candidates = kDefaultCandidates;  ///< ris: points resampled per shading point
   StrategyKind candidates_from = StrategyKind::trs;  ///< ris: the strategy its candidates come from
+  TreeOptions tree;  ///< tree (and ris over it)
 };
 
 /// The strategy that draws the points: the one named, or for `ris` the one its candidates come from.
@@ -125,5 +149,7 @@ std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,
 
 const char* to_string(StrategyKind kind);
 std::optional<StrategyKind> parse_strategy(const std::string& name);
+const char* to_string(TreeImportance importance);
+const char* to_string(TreePower power);
 
 }  // namespace tracer

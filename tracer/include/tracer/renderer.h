@@ -51,6 +51,7 @@ struct RenderResult {
   /// noise comes from the pixel footprint over an emitter, whatever the light strategy.
   std::vector<float> emitter_fraction;
   std::vector<LightFrame> light_frames;  ///< per frame
+  StrategySetup light_structure;      ///< what the strategy built over the lights (zeros: nothing)
   double setup_seconds = 0.0;         ///< scene acceleration structure, emitters, strategy
   double render_seconds = 0.0;        ///< the frames, light sampling included
   std::uint64_t paths = 0;

@@ -11,5 +11,7 @@ std::unique_ptr<LightStrategy> make_uniform_strategy(const Emitters& emitters);
 std::unique_ptr<LightStrategy> make_power_strategy(const Emitters& emitters);
 std::unique_ptr<LightStrategy> make_trs_strategy(const Emitters& emitters,
                                                  const StrategyOptions& options);
+std::unique_ptr<LightStrategy> make_tree_strategy(const Emitters& emitters,
+                                                  const StrategyOptions& options);
 
 }  // namespace tracer

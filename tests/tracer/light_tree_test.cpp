@@ -1,0 +1,225 @@
+// The light tree (tracer/src/strategies/light_tree.h) over some hundreds of small emitters at
+// different distances and orientations: one-sided and two-sided, textured, some of no power
+// (a black texture, a triangle of no area).
+//
+// Walk. Hypothesis: the pmf the walk reports for a light is the probability that it picks that
+// light. Test: 10^6 walks (seed 1 per case) from each of two shading points, with each importance;
+// Pearson chi-square of the lights' counts (and of the walks that pick nothing) against 10^6 times
+// the pmf that LightTree::pmf recomputes; family alpha 0.01 over the four cases, Sidak. A light
+// of no power, or of pmf zero, picked even once fails outright. Every walk's pmf must equal the
+// recomputed one bit for bit.
+//
+// Build. The same nodes whatever the number of threads; every light of positive power in one
+// leaf; each node's bounds hold its children's, its power their sum; no leaf deeper than its
+// trail can record.
+
+#include <gtest/gtest.h>
+
+#include <tbb/global_control.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <lightsampler/random.h>
+
+#include "scene_builder.h"
+#include "strategies/light_tree.h"
+#include "strategies/tree_importance.h"
+#include "support/chi_square.h"
+#include "tracer/emitters.h"
+
+namespace {
+
+using namespace tracer;
+
+/// `count` small triangles scattered in [-4, 4]^2 x [0.3, 6], facing every way, with random UVs
+/// over four emissive materials: one-sided and two-sided random textures, a black texture, a
+/// constant colour. One in fifty has no area.
+Scene scattered_emitters(int count, std::uint64_t seed) {
+  Scene scene;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), signed_unit(-1.0f, 1.0f);
+  Material textured;
+  textured.emissive_factor = glm::vec3(1.0f);
+  textured.emissive_texture = trs_test::add_random_texture(scene, 16, 16, 0.3, seed + 1);
+  Material two_sided = textured;
+  two_sided.double_sided = true;
+  two_sided.emissive_strength = 2.0f;
+  Material black = textured;
+  black.emissive_texture = trs_test::add_random_texture(scene, 4, 4, 1.0, seed + 2);
+  Material plain;
+  plain.emissive_factor = glm::vec3(0.9f, 0.5f, 0.2f);
+  const std::uint32_t materials[] = {trs_test::add_material(scene, textured), trs_test::add_material(scene, two_sided),
+                                     trs_test::add_material(scene, black), trs_test::add_material(scene, plain)};
+  Mesh& m = scene.mesh;
+  for (int t = 0; t < count; ++t) {
+    const glm::vec3 centre(4.0f * signed_unit(rng), 4.0f * signed_unit(rng), 0.3f + 5.7f * unit(rng));
+    const float size = 0.05f + 0.4f * unit(rng);
+    const bool degenerate = t % 50 == 7;
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 offset(signed_unit(rng), signed_unit(rng), signed_unit(rng));
+      m.positions.push_back(degenerate ? centre + float(k) * size * glm::vec3(1, 0, 0) : centre + size * offset);
+      m.uvs.emplace_back(unit(rng), unit(rng));
+      m.indices.push_back(std::uint32_t(m.positions.size() - 1));
+    }
+    m.materials.push_back(materials[t % 7 == 3 ? 2 : t % 3 == 1 ? 1 : t % 5 == 2 ? 3 : 0]);
+  }
+  return scene;
+}
+
+struct Bench {
+  Scene scene;
+  Emitters emitters;
+  std::vector<double> power;
+
+  explicit Bench(int count) : scene(scattered_emitters(count, 5)), emitters(scene, trs_test::kCpuSampler),
+                              power(tree_power(emitters, TreePower::exact)) {}
+};
+
+/// Below the lights, facing up; and among them, tilted.
+const ShadingPoint kShadingPoints[] = {
+    {glm::vec3(0.3f, -0.2f, 0.0f), glm::vec3(0.0f, 0.0f, 1.0f)},
+    {glm::vec3(1.0f, 0.5f, 3.0f), glm::normalize(glm::vec3(0.6f, -0.3f, 0.5f))},
+};
+
+constexpr int kLights = 400;
+constexpr int kWalks = 1000000;
+const double kAlpha = trs_test::sidak_alpha(0.01, 4);
+
+TEST(LightTree, WalkPicksEachLightWithItsPmf) {
+  const Bench bench(kLights);
+  const LightTree tree(bench.emitters, bench.power);
+  for (TreeImportance kind : {TreeImportance::pbrt, TreeImportance::cycles}) {
+    const auto importance = make_node_importance(kind, bench.emitters);
+    for (const ShadingPoint& at : kShadingPoints) {
+      SCOPED_TRACE(to_string(kind));
+      // Cell kLights: the walks that pick nothing.
+      std::vector<double> observed(kLights + 1, 0.0), expected(kLights + 1, 0.0);
+      std::mt19937 rng(1);
+      int mismatches = 0;
+      for (int i = 0; i < kWalks; ++i) {
+        const auto pick = tree.sample(lightsampler::uniform_double(std::uint32_t(rng())), at, *importance);
+        if (!pick) {
+          observed[kLights] += 1.0;
+          continue;
+        }
+        observed[pick->light] += 1.0;
+        mismatches += pick->pmf != tree.pmf(pick->light, at, *importance);
+      }
+      EXPECT_EQ(mismatches, 0) << "walks whose pmf differs from the recomputed one";
+      double total = 0.0;
+      for (std::uint32_t light = 0; light < kLights; ++light) {
+        const float pmf = tree.pmf(light, at, *importance);
+        if (!(bench.power[light] > 0.0)) EXPECT_EQ(pmf, 0.0f) << "light " << light << " has no power";
+        expected[light] = double(pmf) * kWalks;
+        total += pmf;
+      }
+      EXPECT_LE(total, 1.0 + 1e-5);
+      expected[kLights] = std::max(0.0, 1.0 - total) * kWalks;
+      const trs_test::ChiSquareResult result = trs_test::chi_square_test(observed, expected);
+      EXPECT_TRUE(result.passes(kAlpha)) << result.describe();
+      EXPECT_GT(result.dof, 100.0);
+    }
+  }
+}
+
+TEST(LightTree, SameNodesWithAnyNumberOfThreads) {
+  const Bench bench(6000);
+  std::vector<std::vector<LightTreeNode>> builds;
+  // Eight threads even on a machine with fewer cores.
+  const tbb::global_control parallelism(tbb::global_control::max_allowed_parallelism, 8);
+  for (int threads : {1, 2, 8}) {
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+      const LightTree tree(bench.emitters, bench.power);
+      builds.emplace_back(tree.nodes().begin(), tree.nodes().end());
+    });
+  }
+  EXPECT_TRUE(builds[0] == builds[1]) << "1 and 2 threads";
+  EXPECT_TRUE(builds[0] == builds[2]) << "1 and 8 threads";
+}
+
+/// Whether cone (axis a, cos_a) lies within cone (axis b, cos_b), to within `slack` radians (a
+/// cone is kept in single precision, whose cosine near 1 resolves only a few 1e-4 radians).
+bool cone_within(glm::vec3 a, float cos_a, glm::vec3 b, float cos_b, double slack) {
+  if (cos_b <= -1.0f) return true;
+  const double theta_d = std::acos(std::clamp(double(glm::dot(a, b)), -1.0, 1.0));
+  return theta_d + std::acos(double(cos_a)) <= std::acos(double(cos_b)) + slack;
+}
+
+TEST(LightTree, NodesBoundTheirChildren) {
+  const Bench bench(kLights);
+  const LightTree tree(bench.emitters, bench.power);
+  const std::span<const LightTreeNode> nodes = tree.nodes();
+  std::vector<int> leaves(kLights, 0);
+  std::size_t lit = 0;
+  for (double p : bench.power) lit += p > 0.0;
+  ASSERT_EQ(nodes.size(), 2 * lit - 1);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const LightTreeNode& node = nodes[i];
+    if (node.leaf) {
+      ++leaves[node.index];
+      EXPECT_EQ(node.bounds.power, float(bench.power[node.index]));
+      continue;
+    }
+    for (const LightTreeNode* child : {&nodes[i + 1], &nodes[node.index]}) {
+      const LightBounds& b = child->bounds;
+      EXPECT_TRUE(glm::all(glm::lessThanEqual(node.bounds.lower, b.lower)) &&
+                  glm::all(glm::greaterThanEqual(node.bounds.upper, b.upper))) << "node " << i;
+      EXPECT_TRUE(cone_within(b.axis, b.cos_theta_o, node.bounds.axis, node.bounds.cos_theta_o, 1e-3)) << "node " << i;
+      EXPECT_LE(node.bounds.cos_theta_e, b.cos_theta_e);
+    }
+    EXPECT_EQ(node.bounds.power, nodes[i + 1].bounds.power + nodes[node.index].bounds.power) << "node " << i;
+  }
+  for (std::uint32_t light = 0; light < kLights; ++light)
+    EXPECT_EQ(leaves[light], bench.power[light] > 0.0 ? 1 : 0) << "light " << light;
+}
+
+/// The most levels below node `i`.
+int depth_below(std::span<const LightTreeNode> nodes, std::uint32_t i) {
+  if (nodes[i].leaf) return 0;
+  return 1 + std::max(depth_below(nodes, i + 1), depth_below(nodes, nodes[i].index));
+}
+
+// 300 lights along a line, ever farther apart and twice as bright every other light: the split
+// of least cost peels off a few bright lights at a time and would nest them 77 levels deep,
+// more than a light's 64-bit trail holds. The build splits in the middle where a child would
+// leave no room, and the walk still agrees with the pmf.
+TEST(LightTree, ADeepTreeStaysWithinItsTrails) {
+  Scene scene;
+  Material plain;
+  plain.emissive_factor = glm::vec3(1.0f);
+  const std::uint32_t m = trs_test::add_material(scene, plain);
+  for (int t = 0; t < 300; ++t) {
+    const glm::vec3 c(std::pow(1.08f, float(t)), 0.0f, 0.0f);
+    const auto base = std::uint32_t(scene.mesh.positions.size());
+    scene.mesh.positions.insert(scene.mesh.positions.end(), {c, c + glm::vec3(0.3f, 0, 0), c + glm::vec3(0, 0.3f, 0)});
+    scene.mesh.uvs.insert(scene.mesh.uvs.end(), {glm::vec2(0), glm::vec2(0), glm::vec2(0)});
+    scene.mesh.indices.insert(scene.mesh.indices.end(), {base, base + 1, base + 2});
+    scene.mesh.materials.push_back(m);
+  }
+  const Emitters emitters(scene, trs_test::kCpuSampler);
+  std::vector<double> power(300);
+  for (int i = 0; i < 300; ++i) power[i] = std::exp2((i - 150) / 2);
+  const LightTree tree(emitters, power);
+  EXPECT_EQ(depth_below(tree.nodes(), 0), 63);
+
+  const ShadingPoint at{glm::vec3(20.0f, 3.0f, 1.0f), glm::vec3(0.0f, 0.0f, 1.0f)};
+  const auto importance = make_node_importance(TreeImportance::pbrt, emitters);
+  double total = 0.0;
+  for (std::uint32_t light = 0; light < 300; ++light) total += tree.pmf(light, at, *importance);
+  EXPECT_NEAR(total, 1.0, 1e-5);
+  std::mt19937 rng(2);
+  int mismatches = 0;
+  for (int i = 0; i < 100000; ++i) {
+    const auto pick = tree.sample(lightsampler::uniform_double(std::uint32_t(rng())), at, *importance);
+    ASSERT_TRUE(pick);
+    mismatches += pick->pmf != tree.pmf(pick->light, at, *importance);
+  }
+  EXPECT_EQ(mismatches, 0);
+}
+
+}  // namespace

@@ -1,0 +1,102 @@
+// `tree`: a light picked for the shading point by a walk down the light tree (light_tree.h),
+// then a point on it: uniform in the solid angle the triangle subtends where that is neither
+// tiny nor nearly a hemisphere (pbrt-v4's thresholds), uniform by area otherwise. The point's
+// area density is the walk's pmf times the point's density on its triangle, and pdf() computes
+// both again from the shading point, so that a BSDF hit is weighed exactly as the light sample
+// that could have found it.
+
+#include <chrono>
+
+#include <lightsampler/random.h>
+#include <lightsampler/triangle_map.h>
+
+#include "strategies/spherical_triangle.h"
+#include "strategies/strategies.h"
+#include "strategies/tree.h"
+#include "strategies/tree_importance.h"
+
+namespace tracer {
+namespace {
+
+/// Solid angles, in steradians, between which a triangle is sampled by direction (pbrt-v4's
+/// MinSphericalSampleArea and MaxSphericalSampleArea). Outside, Arvo's construction loses
+/// precision: below, where cos theta_l / d^2 hardly varies over the triangle and uniform area
+/// does as well; above, where the triangle fills nearly the whole hemisphere.
+constexpr double kMinSphericalSolidAngle = 3e-4;
+constexpr double kMaxSphericalSolidAngle = 6.22;
+
+class TreeStrategy : public LightStrategy {
+ public:
+  TreeStrategy(const Emitters& emitters, std::span<const double> power,
+               std::unique_ptr<const NodeImportance> importance)
+      : emitters_(emitters), importance_(std::move(importance)), tree_(timed_build(emitters, power)) {}
+
+  std::string name() const override { return "tree"; }
+
+  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+                                    const ShadingPoint& at) const override {
+    const std::optional<LightTree::Pick> pick = tree_.sample(lightsampler::uniform_double(random[0]), at, *importance_);
+    if (!pick) return std::nullopt;
+    const std::array<glm::vec3, 3> v = emitters_.vertices(pick->light);
+    const double omega = solid_angle(v, at.position);
+    const float u1 = lightsampler::uniform_float(random[1]), u2 = lightsampler::uniform_float(random[2]);
+    const lightsampler::Barycentrics b = by_direction(omega) ? sample_spherical_triangle(v, at.position, u1, u2)
+                                                             : lightsampler::triangle_map(u1, u2);
+    const float density = pick->pmf * point_density(pick->light, b.b1, b.b2, at, omega);
+    // A point seen edge-on carries nothing, and pdf() gives it zero too.
+    if (!(density > 0.0f)) return std::nullopt;
+    return light_point(emitters_, pick->light, b.b1, b.b2, density, density);
+  }
+
+  float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
+    const float pmf = tree_.pmf(light, from, *importance_);
+    if (!(pmf > 0.0f)) return 0.0f;
+    return pmf * point_density(light, b1, b2, from, solid_angle(emitters_.vertices(light), from.position));
+  }
+
+  StrategySetup setup() const override { return {build_ms_, tree_.bytes()}; }
+
+ private:
+  static bool by_direction(double omega) {
+    return omega >= kMinSphericalSolidAngle && omega <= kMaxSphericalSolidAngle;
+  }
+
+  LightTree timed_build(const Emitters& emitters, std::span<const double> power) {
+    const auto start = std::chrono::steady_clock::now();
+    LightTree tree(emitters, power);
+    build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return tree;
+  }
+
+  /// Area density of point (b1, b2) of `light` as drawn for `at`, given the light's solid angle
+  /// there: uniform by area, or uniform by direction, whose area density is |cos theta_l| / (d^2
+  /// omega).
+  float point_density(std::uint32_t light, float b1, float b2, const ShadingPoint& at, double omega) const {
+    if (!by_direction(omega)) return 1.0f / emitters_.area(light);
+    const glm::dvec3 d = glm::dvec3(emitters_.position(light, b1, b2)) - glm::dvec3(at.position);
+    const double d2 = glm::dot(d, d);
+    if (!(d2 > 0.0)) return 0.0f;
+    const double cos_light = std::abs(glm::dot(glm::dvec3(emitters_.normal(light)), d)) / std::sqrt(d2);
+    return float(cos_light / (d2 * omega));
+  }
+
+  const Emitters& emitters_;
+  std::unique_ptr<const NodeImportance> importance_;
+  double build_ms_ = 0.0;
+  LightTree tree_;
+};
+
+}  // namespace
+
+std::unique_ptr<LightStrategy> make_tree_strategy(const Emitters& emitters, TreePower power,
+                                                  std::unique_ptr<const NodeImportance> importance) {
+  return std::make_unique<TreeStrategy>(emitters, tree_power(emitters, power), std::move(importance));
+}
+
+std::unique_ptr<LightStrategy> make_tree_strategy(const Emitters& emitters,
+                                                  const StrategyOptions& options) {
+  return make_tree_strategy(emitters, options.tree.power,
+                            make_node_importance(options.tree.importance, emitters));
+}
+
+}  // namespace tracer
