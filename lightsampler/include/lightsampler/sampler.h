@@ -12,6 +12,7 @@
 #include "lightsampler/buffer.h"
 #include "lightsampler/mesh.h"
 #include "lightsampler/sample.h"
+#include "lightsampler/texel_pieces.h"
 
 namespace lightsampler {
 
@@ -157,6 +158,15 @@ class Sampler {
   /// without a map. A renderer that reads its own per-texel data there (emitted radiance) stays
   /// texel for texel with the sampler.
   virtual std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const = 0;
+
+  /// The triangle's pieces of non-zero density, row by row of the lattice (texel_pieces.h), into
+  /// `out` (cleared first): their densities times their areas integrate the density over the
+  /// triangle exactly. A triangle without UV area is one piece.
+  virtual void texel_pieces(std::uint32_t triangle, std::vector<TexelPiece>& out) const = 0;
+  /// The piece of one lattice cell, as texel_pieces gives it; none where the triangle does not
+  /// overlap that cell.
+  virtual std::optional<TexelPiece> texel_piece(std::uint32_t triangle, std::int64_t cell_x,
+                                                std::int64_t cell_y) const = 0;
 };
 
 struct CpuOptions {

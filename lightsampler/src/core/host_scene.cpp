@@ -6,6 +6,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/piece_draw.h"
+#include "core/texel_pieces.h"
 #include "core/validate.h"
 
 namespace lightsampler::core {
@@ -52,6 +54,38 @@ float HostScene::density(std::uint32_t triangle, float b1, float b2) const {
 
 std::optional<Texel> HostScene::texel(std::uint32_t triangle, float b1, float b2) const {
   return texel_triangle_texel(texel_triangle(triangle), maps_, b1, b2);
+}
+
+namespace {
+
+lightsampler::TexelPiece public_piece(const TexelPiece& piece, const DensityMap& map, std::uint32_t index) {
+  lightsampler::TexelPiece out{piece.ix, piece.iy, cell_texel(map, index, piece.ix, piece.iy),
+                               cell_density(map, piece.ix, piece.iy), 2.0 * piece.area,
+                               std::uint32_t(piece.polygon.n), {}};
+  for (int i = 0; i < piece.polygon.n; ++i) out.vertices[i] = piece.polygon.v[i];
+  return out;
+}
+
+}  // namespace
+
+void HostScene::texel_pieces(std::uint32_t triangle, std::vector<lightsampler::TexelPiece>& out) const {
+  out.clear();
+  const TexelTriangle& t = texel_triangle(triangle);
+  if (t.map == kNoMap) return;
+  const DensityMap& map = maps_[t.map];
+  // Dark cells are not clipped: a sparse map's triangle has few lit ones.
+  for_each_texel_piece(
+      t, [&](const TexelPiece& piece) { out.push_back(public_piece(piece, map, t.map)); },
+      [&](std::int64_t ix, std::int64_t iy) { return cell_density(map, ix, iy) > 0.0f; });
+}
+
+std::optional<lightsampler::TexelPiece> HostScene::texel_piece(std::uint32_t triangle, std::int64_t cell_x,
+                                                               std::int64_t cell_y) const {
+  const TexelTriangle& t = texel_triangle(triangle);
+  if (t.map == kNoMap) return std::nullopt;
+  const std::optional<TexelPiece> piece = core::texel_piece(t, cell_x, cell_y);
+  if (!piece) return std::nullopt;
+  return public_piece(*piece, maps_[t.map], t.map);
 }
 
 void HostScene::build_texel_triangles(std::size_t map) {

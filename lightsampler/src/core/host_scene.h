@@ -10,6 +10,7 @@
 #include "core/density.h"
 #include "core/geometry.h"
 #include "lightsampler/mesh.h"
+#include "lightsampler/texel_pieces.h"
 
 namespace lightsampler::core {
 
@@ -26,6 +27,10 @@ class HostScene {
   float density(std::uint32_t triangle, float b1, float b2) const;
   /// The texel density() reads there.
   std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const;
+  /// Sampler::texel_pieces and Sampler::texel_piece.
+  void texel_pieces(std::uint32_t triangle, std::vector<lightsampler::TexelPiece>& out) const;
+  std::optional<lightsampler::TexelPiece> texel_piece(std::uint32_t triangle, std::int64_t cell_x,
+                                                      std::int64_t cell_y) const;
 
   std::span<const TriangleRecord> triangles() const { return triangles_; }
   std::span<const DensityMap> maps() const { return maps_; }

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include "core/density.h"
 #include "core/geometry.h"
@@ -80,30 +81,61 @@ inline PieceCells piece_cells(const TexelTriangle& t) {
           std::int64_t(std::floor(std::max({ys[0], ys[1], ys[2]}))), false};
 }
 
-/// Calls fn(const TexelPiece&) for every lattice cell the triangle overlaps with non-zero area
-/// and keep(ix, iy) accepts, row by row; keep spares the clipping of cells the caller would
-/// ignore. A triangle without UV area lies in the one cell of its origin.
-template <class Fn, class Keep>
-void for_each_texel_piece(const TexelTriangle& t, Fn&& fn, Keep&& keep) {
-  const double ox = t.origin[0], oy = t.origin[1];
-  const double e1x = t.edge1[0], e1y = t.edge1[1], e2x = t.edge2[0], e2y = t.edge2[1];
+/// The whole triangle, in its barycentric plane.
+inline BaryPolygon unit_simplex() {
   BaryPolygon simplex;
   simplex.v[0] = {0.0, 0.0};
   simplex.v[1] = {1.0, 0.0};
   simplex.v[2] = {0.0, 1.0};
   simplex.n = 3;
+  return simplex;
+}
+
+/// The part of the triangle in lattice row iy <= y < iy + 1.
+inline BaryPolygon row_polygon(const TexelTriangle& t, std::int64_t iy) {
+  const double oy = t.origin[1], e1y = t.edge1[1], e2y = t.edge2[1];
+  return clip(clip(unit_simplex(), e1y, e2y, oy - double(iy)), -e1y, -e2y, double(iy + 1) - oy);
+}
+
+/// The part of a row's polygon in column ix <= x < ix + 1.
+inline BaryPolygon cell_polygon(const TexelTriangle& t, const BaryPolygon& row, std::int64_t ix) {
+  const double ox = t.origin[0], e1x = t.edge1[0], e2x = t.edge2[0];
+  return clip(clip(row, e1x, e2x, ox - double(ix)), -e1x, -e2x, double(ix + 1) - ox);
+}
+
+/// The piece of lattice cell (ix, iy), cut exactly as for_each_texel_piece cuts it; none where
+/// the triangle does not overlap the cell with non-zero area.
+inline std::optional<TexelPiece> texel_piece(const TexelTriangle& t, std::int64_t ix, std::int64_t iy) {
   const PieceCells cells = piece_cells(t);
   if (cells.flat) {
-    if (keep(cells.x0, cells.y0)) fn(TexelPiece{cells.x0, cells.y0, simplex, 0.5});
+    if (ix != cells.x0 || iy != cells.y0) return std::nullopt;
+    return TexelPiece{ix, iy, unit_simplex(), 0.5};
+  }
+  const BaryPolygon row = row_polygon(t, iy);
+  if (row.n < 3) return std::nullopt;
+  const BaryPolygon cell = cell_polygon(t, row, ix);
+  if (cell.n < 3) return std::nullopt;
+  const double area = cell.area();
+  if (!(area > 0.0)) return std::nullopt;
+  return TexelPiece{ix, iy, cell, area};
+}
+
+/// Calls fn(const TexelPiece&) for every lattice cell the triangle overlaps with non-zero area
+/// and keep(ix, iy) accepts, row by row; keep spares the clipping of cells the caller would
+/// ignore. A triangle without UV area lies in the one cell of its origin.
+template <class Fn, class Keep>
+void for_each_texel_piece(const TexelTriangle& t, Fn&& fn, Keep&& keep) {
+  const PieceCells cells = piece_cells(t);
+  if (cells.flat) {
+    if (keep(cells.x0, cells.y0)) fn(TexelPiece{cells.x0, cells.y0, unit_simplex(), 0.5});
     return;
   }
   for (std::int64_t iy = cells.y0; iy <= cells.y1; ++iy) {
-    // The row iy <= y < iy + 1, then each cell ix <= x < ix + 1 of it.
-    const BaryPolygon row = clip(clip(simplex, e1y, e2y, oy - double(iy)), -e1y, -e2y, double(iy + 1) - oy);
+    const BaryPolygon row = row_polygon(t, iy);
     if (row.n < 3) continue;
     for (std::int64_t ix = cells.x0; ix <= cells.x1; ++ix) {
       if (!keep(ix, iy)) continue;
-      const BaryPolygon cell = clip(clip(row, e1x, e2x, ox - double(ix)), -e1x, -e2x, double(ix + 1) - ox);
+      const BaryPolygon cell = cell_polygon(t, row, ix);
       if (cell.n < 3) continue;
       const double area = cell.area();
       if (area > 0.0) fn(TexelPiece{ix, iy, cell, area});

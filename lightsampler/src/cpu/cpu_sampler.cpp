@@ -74,6 +74,13 @@ class CpuSampler final : public Sampler {
   std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const override {
     return scene_.texel(triangle, b1, b2);
   }
+  void texel_pieces(std::uint32_t triangle, std::vector<TexelPiece>& out) const override {
+    scene_.texel_pieces(triangle, out);
+  }
+  std::optional<TexelPiece> texel_piece(std::uint32_t triangle, std::int64_t cell_x,
+                                        std::int64_t cell_y) const override {
+    return scene_.texel_piece(triangle, cell_x, cell_y);
+  }
 
   void generate(const FrameRequest& request, Frame& frame) override {
     if (request.scan == ScanOrder::lookback)

@@ -141,6 +141,13 @@ class VulkanSampler final : public Sampler {
   std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const override {
     return scene_.host().texel(triangle, b1, b2);
   }
+  void texel_pieces(std::uint32_t triangle, std::vector<TexelPiece>& out) const override {
+    scene_.host().texel_pieces(triangle, out);
+  }
+  std::optional<TexelPiece> texel_piece(std::uint32_t triangle, std::int64_t cell_x,
+                                        std::int64_t cell_y) const override {
+    return scene_.host().texel_piece(triangle, cell_x, cell_y);
+  }
 
   void generate(const FrameRequest& request, Frame& frame) override {
     core::begin_frame(request, frame);
