@@ -234,7 +234,7 @@ class PowerDrawnUniformWeighed : public LightStrategy {
       : power_(strategy(emitters, StrategyKind::power)),
         uniform_(strategy(emitters, StrategyKind::uniform)) {}
   std::string name() const override { return "wrong"; }
-  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+  std::optional<LightSample> sample(const LightRandom& random,
                                     const ShadingPoint& at) const override {
     auto s = power_->sample(random, at);
     if (s) s->pdf = s->mis_pdf = pdf(s->light, s->b1, s->b2, at);
@@ -255,7 +255,7 @@ class TrsWithoutSetSize : public LightStrategy {
       : trs_(strategy(emitters, StrategyKind::trs, 1)) {}
   std::string name() const override { return "wrong"; }
   void begin_frame(std::uint64_t frame) override { trs_->begin_frame(frame); }
-  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+  std::optional<LightSample> sample(const LightRandom& random,
                                     const ShadingPoint& at) const override {
     auto s = trs_->sample(random, at);
     if (s) s->pdf = s->mis_pdf;

@@ -15,11 +15,11 @@ class Resampled : public LightStrategy {
   explicit Resampled(std::unique_ptr<LightStrategy> source) : source_(std::move(source)) {}
   std::string name() const override { return "ris"; }
   void begin_frame(std::uint64_t frame) override { source_->begin_frame(frame); }
-  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+  std::optional<LightSample> sample(const LightRandom& random,
                                     const ShadingPoint& at) const override {
     return source_->sample(random, at);
   }
-  void prefetch(const std::array<std::uint32_t, 3>& random) const override { source_->prefetch(random); }
+  void prefetch(const LightRandom& random) const override { source_->prefetch(random); }
   float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
     return source_->pdf(light, b1, b2, from);
   }

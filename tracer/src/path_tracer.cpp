@@ -168,23 +168,24 @@ glm::vec3 PathTracer::light_sample(const Vertex& vertex, const Bsdf& bsdf, PathR
   const ShadingPoint at = vertex.shading_point();
   // In batches: a batch's candidates are fetched from memory together, then weighed.
   constexpr unsigned kBatch = 16;
-  std::array<std::array<std::uint32_t, 4>, kBatch> words;
+  std::array<LightRandom, kBatch> words;
   for (unsigned first = 0; first < candidates_; first += kBatch) {
     const unsigned batch = std::min(kBatch, candidates_ - first);
     for (unsigned i = 0; i < batch; ++i) {
       words[i] = random.words();
-      strategy_.prefetch({words[i][0], words[i][1], words[i][2]});
+      strategy_.prefetch(words[i]);
     }
     for (unsigned i = 0; i < batch; ++i) {
-      const std::optional<LightSample> s = strategy_.sample({words[i][0], words[i][1], words[i][2]}, at);
+      const std::optional<LightSample> s = strategy_.sample(words[i], at);
       if (!s) continue;
       std::optional<Connection> c = connect(vertex, bsdf, *s);
       if (!c) continue;
       const float weight = luminance(c->unshadowed);
       if (!(weight > 0.0f)) continue;
       weight_sum += weight;
-      // A one-slot reservoir: each candidate replaces the kept one with probability weight / sum.
-      if (lightsampler::uniform_float(words[i][3]) * weight_sum < weight) {
+      // A one-slot reservoir: each candidate replaces the kept one with probability weight / sum
+      // (the first always: it needs no coin).
+      if (!kept || lightsampler::uniform_float(random.words()[0]) * weight_sum < weight) {
         kept = std::move(c);
         kept_weight = weight;
       }

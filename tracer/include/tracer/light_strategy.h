@@ -46,6 +46,9 @@ static_assert(sizeof(LightSample) == 64);
 LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,
                         float pdf, float mis_pdf);
 
+/// What a strategy draws one point from: four independent uniform 32-bit words.
+using LightRandom = std::array<std::uint32_t, 4>;
+
 /// Where lights are seen from: a shading point. Strategies that weigh lights by distance and
 /// orientation (the light tree) read it; the others draw the same whatever it is.
 struct ShadingPoint {
@@ -76,13 +79,13 @@ class LightStrategy {
   virtual std::string name() const = 0;
   /// Called before each frame's paths; `frame` numbers frames from 0.
   virtual void begin_frame(std::uint64_t frame) { (void)frame; }
-  /// A point on the lights, seen from `at`, from three independent uniform 32-bit words; none
-  /// when the lights have nothing to offer this frame.
-  virtual std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+  /// A point on the lights, seen from `at`; none when the lights have nothing to offer this
+  /// frame.
+  virtual std::optional<LightSample> sample(const LightRandom& random,
                                             const ShadingPoint& at) const = 0;
   /// Starts bringing what sample() will read for these words into the cache, so that a shading
   /// point's candidates wait for memory together rather than one after another.
-  virtual void prefetch(const std::array<std::uint32_t, 3>& random) const { (void)random; }
+  virtual void prefetch(const LightRandom& random) const { (void)random; }
   /// Area density with which sample(., from) picks a point of a light; what a BSDF-sampled hit
   /// on the light, seen from `from`, weighs against.
   virtual float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const = 0;

@@ -33,7 +33,7 @@ class TreeStrategy : public LightStrategy {
 
   std::string name() const override { return "tree"; }
 
-  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+  std::optional<LightSample> sample(const LightRandom& random,
                                     const ShadingPoint& at) const override {
     const std::optional<LightTree::Pick> pick = tree_.sample(lightsampler::uniform_double(random[0]), at, *importance_);
     if (!pick) return std::nullopt;

@@ -21,7 +21,7 @@ TriangleChoice::TriangleChoice(const Emitters& emitters, std::span<const double>
   cdf_.back() = 1.0;
 }
 
-std::optional<LightSample> TriangleChoice::sample(const std::array<std::uint32_t, 3>& random,
+std::optional<LightSample> TriangleChoice::sample(const LightRandom& random,
                                                   const ShadingPoint&) const {
   const double u = lightsampler::uniform_double(random[0]);
   // The first light whose CDF exceeds u: zero-weight lights are never chosen.

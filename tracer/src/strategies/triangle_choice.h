@@ -14,7 +14,7 @@ class TriangleChoice : public LightStrategy {
   /// `weights` per light, non-negative, not all zero.
   TriangleChoice(const Emitters& emitters, std::span<const double> weights);
 
-  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+  std::optional<LightSample> sample(const LightRandom& random,
                                     const ShadingPoint& at) const override;
   float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override;
 

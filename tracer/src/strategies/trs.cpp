@@ -78,7 +78,7 @@ class TrsStrategy : public LightStrategy {
     write_records();
   }
 
-  std::optional<LightSample> sample(const std::array<std::uint32_t, 3>& random,
+  std::optional<LightSample> sample(const LightRandom& random,
                                     const ShadingPoint&) const override {
     if (records_.empty()) return std::nullopt;
     const LightSample& s = records_[index(random[0])];
@@ -88,7 +88,7 @@ class TrsStrategy : public LightStrategy {
     return s;
   }
 
-  void prefetch(const std::array<std::uint32_t, 3>& random) const override {
+  void prefetch(const LightRandom& random) const override {
     if (!records_.empty()) __builtin_prefetch(&records_[index(random[0])]);
   }
 
