@@ -116,8 +116,9 @@ std::unique_ptr<LightStrategy> strategy(const Emitters& emitters, StrategyKind k
 }
 
 const std::vector<StrategyKind> kEveryStrategy = {StrategyKind::uniform, StrategyKind::power,
-                                                  StrategyKind::trs, StrategyKind::ris,
-                                                  StrategyKind::tree};
+                                                  StrategyKind::trs,     StrategyKind::ris,
+                                                  StrategyKind::tree,    StrategyKind::texel,
+                                                  StrategyKind::tree_texel};
 
 /// Whether every strategy's estimate along the bench's ray agrees with the quadrature.
 void expect_every_strategy_agrees(const QuadOverPlane& bench, const glm::dvec3& expected,
@@ -165,14 +166,17 @@ TEST_F(AnalyticQuad, RisConvergesWhereverItsCandidatesComeFrom) {
 // The tree with each importance and each source of the lights' power: the emitter's two
 // triangles cover different halves of its texture, so that the whole map's mean misjudges them.
 TEST_F(AnalyticQuad, TreeConvergesWithEitherImportanceAndPower) {
-  for (TreeImportance importance : {TreeImportance::pbrt, TreeImportance::cycles}) {
-    for (TreePower power : {TreePower::exact, TreePower::image_mean}) {
-      StrategyOptions o = options(StrategyKind::tree);
-      o.tree = {importance, power};
-      auto s = make_light_strategy(*bench_->emitters, o);
-      const Estimate e = bench_->run(*s, 5);
-      EXPECT_TRUE(trs_test::agrees(e, expected_, kSigmas, kQuadratureSlack))
-          << to_string(importance) << ", " << to_string(power) << "\n" << trs_test::describe(e, expected_);
+  for (StrategyKind kind : {StrategyKind::tree, StrategyKind::tree_texel}) {
+    for (TreeImportance importance : {TreeImportance::pbrt, TreeImportance::cycles}) {
+      for (TreePower power : {TreePower::exact, TreePower::image_mean}) {
+        StrategyOptions o = options(kind);
+        o.tree = {importance, power};
+        auto s = make_light_strategy(*bench_->emitters, o);
+        const Estimate e = bench_->run(*s, 5);
+        EXPECT_TRUE(trs_test::agrees(e, expected_, kSigmas, kQuadratureSlack))
+            << to_string(kind) << ", " << to_string(importance) << ", " << to_string(power) << "\n"
+            << trs_test::describe(e, expected_);
+      }
     }
   }
 }

@@ -67,7 +67,8 @@ TEST(Furnace, OneBounceReturnsEmissionPlusAlbedo) {
   const Bsdf bsdf({glm::vec3(1.0f), 0.0f, kRoughness}, {0, 0, 1});
   const double expected = 1.0 + albedo(bsdf, {0, 0, 1}, -ray.direction);
   for (StrategyKind kind :
-       {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris, StrategyKind::tree}) {
+       {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris, StrategyKind::tree,
+        StrategyKind::texel, StrategyKind::tree_texel}) {
     StrategyOptions options;
     options.kind = kind;
     options.lights = 5000;

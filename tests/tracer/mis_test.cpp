@@ -46,11 +46,12 @@ StrategyOptions options(StrategyKind kind, TreeImportance importance = TreeImpor
 /// Every strategy; the tree with each of its importances.
 const std::vector<StrategyOptions> kStrategies = {
     options(StrategyKind::uniform), options(StrategyKind::power), options(StrategyKind::trs),
-    options(StrategyKind::ris),     options(StrategyKind::tree),
-    options(StrategyKind::tree, TreeImportance::cycles)};
+    options(StrategyKind::ris),     options(StrategyKind::tree),  options(StrategyKind::tree, TreeImportance::cycles),
+    options(StrategyKind::texel),   options(StrategyKind::tree_texel),
+    options(StrategyKind::tree_texel, TreeImportance::cycles)};
 
 std::string name(const StrategyOptions& o) {
-  return o.kind == StrategyKind::tree ? std::string("tree, ") + to_string(o.tree.importance) : to_string(o.kind);
+  return picks_by_tree(o) ? std::string(to_string(o.kind)) + ", " + to_string(o.tree.importance) : to_string(o.kind);
 }
 
 TEST(Mis, LightAndBsdfWeightsSumToOne) {

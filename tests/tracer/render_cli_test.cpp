@@ -30,7 +30,7 @@ using trs_test::RunResult;
 using trs_test::write_file;
 
 const fs::path kScene = fs::path(TRS_SCENES_DIR) / "neon-sign" / "neon-sign.gltf";
-const std::vector<std::string> kStrategies = {"uniform", "power", "trs", "ris", "tree"};
+const std::vector<std::string> kStrategies = {"uniform", "power", "trs", "ris", "tree", "texel", "tree-texel"};
 
 nlohmann::json read_json(const fs::path& file) { return nlohmann::json::parse(read_file(file)); }
 
@@ -163,14 +163,18 @@ TEST_F(RenderCliTest, RendersEveryStrategy) {
       EXPECT_TRUE(settings["candidates"].is_null());
       EXPECT_TRUE(settings["candidates_from"].is_null());
     }
-    if (strategy == "tree") {
+    const bool tree = strategy == "tree" || strategy == "tree-texel";
+    if (tree) {
       EXPECT_EQ(settings["tree_importance"], "pbrt");
       EXPECT_EQ(settings["tree_power"], "exact");
-      EXPECT_GE(stats["light_structure"]["build_ms"].get<double>(), 0.0);
-      EXPECT_GT(stats["light_structure"]["bytes"].get<double>(), 0.0);
     } else {
       EXPECT_TRUE(settings["tree_importance"].is_null());
       EXPECT_TRUE(settings["tree_power"].is_null());
+    }
+    if (tree || strategy == "texel") {
+      EXPECT_GE(stats["light_structure"]["build_ms"].get<double>(), 0.0);
+      EXPECT_GT(stats["light_structure"]["bytes"].get<double>(), 0.0);
+    } else {
       EXPECT_TRUE(stats["light_structure"].is_null());
     }
   }

@@ -22,7 +22,9 @@ const std::map<std::string, tracer::StrategyKind> kStrategies = {
     {"power", tracer::StrategyKind::power},
     {"trs", tracer::StrategyKind::trs},
     {"ris", tracer::StrategyKind::ris},
-    {"tree", tracer::StrategyKind::tree}};
+    {"tree", tracer::StrategyKind::tree},
+    {"texel", tracer::StrategyKind::texel},
+    {"tree-texel", tracer::StrategyKind::tree_texel}};
 
 const std::map<std::string, tracer::TreeImportance> kTreeImportances = {
     {"pbrt", tracer::TreeImportance::pbrt}, {"cycles", tracer::TreeImportance::cycles}};
@@ -101,12 +103,12 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
       ->check(CLI::IsMember(resamplable_names()))
       ->capture_default_str();
   app.add_option("--tree-importance", tree_importance,
-                 "tree: how a node's importance for a shading point is estimated: pbrt (pbrt-v4's), "
+                 "tree, tree-texel: how a node's importance for a shading point is estimated: pbrt (pbrt-v4's), "
                  "or cycles (Cycles' lower and upper bounds, averaged)")
       ->check(CLI::IsMember(names(kTreeImportances)))
       ->capture_default_str();
   app.add_option("--tree-power", tree_power,
-                 "tree: each light's power: exact (its texels' integral), or image-mean (its area "
+                 "tree, tree-texel: each light's power: exact (its texels' integral), or image-mean (its area "
                  "times the mean of its whole emission map, as pbrt-v4 takes it)")
       ->check(CLI::IsMember(names(kTreePowers)))
       ->capture_default_str();
@@ -180,8 +182,8 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   }
   r.strategy.tree = {kTreeImportances.at(tree_importance), kTreePowers.at(tree_power)};
   for (const char* option : {"--tree-importance", "--tree-power"}) {
-    if (app.count(option) > 0 && tracer::source_kind(r.strategy) != tracer::StrategyKind::tree) {
-      std::cerr << "trs-render: error: " << option << " belongs to --strategy tree (or ris over it)\n";
+    if (app.count(option) > 0 && !tracer::picks_by_tree(r.strategy)) {
+      std::cerr << "trs-render: error: " << option << " belongs to --strategy tree and tree-texel (or ris over them)\n";
       return kUsageError;
     }
   }

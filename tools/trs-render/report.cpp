@@ -113,7 +113,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
   for (const tracer::LightFrame& f : result.light_frames) ms.push_back(f.sampler_ms);
   nlohmann::json passes = nlohmann::json::object();
   for (const lightsampler::PassTime& p : sampler.passes) passes[lightsampler::to_string(p.pass)] = p.ms;
-  const bool tree = tracer::source_kind(r.strategy) == tracer::StrategyKind::tree;
+  const bool tree = tracer::picks_by_tree(r.strategy);
   return {
       {"settings",
        {{"scene", options.scene.string()},

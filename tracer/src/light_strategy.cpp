@@ -38,6 +38,8 @@ std::unique_ptr<LightStrategy> make_source(const Emitters& emitters, StrategyKin
     case StrategyKind::power: return make_power_strategy(emitters);
     case StrategyKind::trs: return make_trs_strategy(emitters, options);
     case StrategyKind::tree: return make_tree_strategy(emitters, options);
+    case StrategyKind::texel: return make_texel_strategy(emitters);
+    case StrategyKind::tree_texel: return make_tree_texel_strategy(emitters, options);
     case StrategyKind::ris: break;
   }
   throw std::invalid_argument("unknown light strategy");
@@ -72,13 +74,16 @@ const char* to_string(StrategyKind kind) {
     case StrategyKind::trs: return "trs";
     case StrategyKind::ris: return "ris";
     case StrategyKind::tree: return "tree";
+    case StrategyKind::texel: return "texel";
+    case StrategyKind::tree_texel: return "tree-texel";
   }
   return "?";
 }
 
 std::optional<StrategyKind> parse_strategy(const std::string& name) {
   for (StrategyKind kind :
-       {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris, StrategyKind::tree})
+       {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris, StrategyKind::tree,
+        StrategyKind::texel, StrategyKind::tree_texel})
     if (name == to_string(kind)) return kind;
   return std::nullopt;
 }

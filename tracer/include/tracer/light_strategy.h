@@ -103,7 +103,7 @@ inline constexpr unsigned kDefaultCandidates = 4;
 
 /// `ris` resamples the points of another strategy per shading point (PathTracer): by default
 /// the point lights of `trs`.
-enum class StrategyKind { uniform, power, trs, ris, tree };
+enum class StrategyKind { uniform, power, trs, ris, tree, texel, tree_texel };
 
 /// tree: how a node's importance for a shading point is estimated (tree_importance.h).
 enum class TreeImportance { pbrt, cycles };
@@ -130,6 +130,11 @@ struct StrategyOptions {
 /// The strategy that draws the points: the one named, or for `ris` the one its candidates come from.
 inline StrategyKind source_kind(const StrategyOptions& options) {
   return options.kind == StrategyKind::ris ? options.candidates_from : options.kind;
+}
+
+/// Whether the strategy picks lights with the light tree (and reads StrategyOptions::tree).
+inline bool picks_by_tree(const StrategyOptions& options) {
+  return source_kind(options) == StrategyKind::tree || source_kind(options) == StrategyKind::tree_texel;
 }
 
 /// Whether the strategy draws a set of point lights every frame.

@@ -13,5 +13,8 @@ std::unique_ptr<LightStrategy> make_trs_strategy(const Emitters& emitters,
                                                  const StrategyOptions& options);
 std::unique_ptr<LightStrategy> make_tree_strategy(const Emitters& emitters,
                                                   const StrategyOptions& options);
+std::unique_ptr<LightStrategy> make_texel_strategy(const Emitters& emitters);
+std::unique_ptr<LightStrategy> make_tree_texel_strategy(const Emitters& emitters,
+                                                        const StrategyOptions& options);
 
 }  // namespace tracer

@@ -5,8 +5,6 @@
 // both again from the shading point, so that a BSDF hit is weighed exactly as the light sample
 // that could have found it.
 
-#include <chrono>
-
 #include <lightsampler/random.h>
 #include <lightsampler/triangle_map.h>
 
@@ -29,13 +27,13 @@ class TreeStrategy : public LightStrategy {
  public:
   TreeStrategy(const Emitters& emitters, std::span<const double> power,
                std::unique_ptr<const NodeImportance> importance)
-      : emitters_(emitters), importance_(std::move(importance)), tree_(timed_build(emitters, power)) {}
+      : emitters_(emitters), tree_(emitters, power, std::move(importance)) {}
 
   std::string name() const override { return "tree"; }
 
   std::optional<LightSample> sample(const LightRandom& random,
                                     const ShadingPoint& at) const override {
-    const std::optional<LightTree::Pick> pick = tree_.sample(lightsampler::uniform_double(random[0]), at, *importance_);
+    const std::optional<LightTree::Pick> pick = tree_.pick(lightsampler::uniform_double(random[0]), at);
     if (!pick) return std::nullopt;
     const std::array<glm::vec3, 3> v = emitters_.vertices(pick->light);
     const double omega = solid_angle(v, at.position);
@@ -49,23 +47,16 @@ class TreeStrategy : public LightStrategy {
   }
 
   float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
-    const float pmf = tree_.pmf(light, from, *importance_);
+    const float pmf = tree_.pmf(light, from);
     if (!(pmf > 0.0f)) return 0.0f;
     return pmf * point_density(light, b1, b2, from, solid_angle(emitters_.vertices(light), from.position));
   }
 
-  StrategySetup setup() const override { return {build_ms_, tree_.bytes()}; }
+  StrategySetup setup() const override { return tree_.setup(); }
 
  private:
   static bool by_direction(double omega) {
     return omega >= kMinSphericalSolidAngle && omega <= kMaxSphericalSolidAngle;
-  }
-
-  LightTree timed_build(const Emitters& emitters, std::span<const double> power) {
-    const auto start = std::chrono::steady_clock::now();
-    LightTree tree(emitters, power);
-    build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    return tree;
   }
 
   /// Area density of point (b1, b2) of `light` as drawn for `at`, given the light's solid angle
@@ -81,9 +72,7 @@ class TreeStrategy : public LightStrategy {
   }
 
   const Emitters& emitters_;
-  std::unique_ptr<const NodeImportance> importance_;
-  double build_ms_ = 0.0;
-  LightTree tree_;
+  TreePicker tree_;
 };
 
 }  // namespace

@@ -1,0 +1,71 @@
+// `texel`: at every next-event query, a texel piece of the lights drawn in proportion to its
+// density times its area (an alias table over the scene's pieces, piece_table.h), then a uniform
+// point in it. Its density is D(x) / integral of D, the target density of `trs`, drawn exactly at
+// each query: `trs` with infinitely many lights per frame. Comparing the two separates what the
+// target density is worth from what the per-frame point set costs and gives.
+
+#include <chrono>
+
+#include <lightsampler/random.h>
+
+#include "strategies/alias_table.h"
+#include "strategies/piece_table.h"
+#include "strategies/strategies.h"
+
+namespace tracer {
+namespace {
+
+/// float(u) below 1, for the uniforms that choices leave over.
+float below_one(double u) { return std::min(float(u), 0x1.fffffep-1f); }
+
+std::vector<double> piece_weights(const PieceTable& table) {
+  std::vector<double> weights(table.size());
+  for (std::size_t i = 0; i < table.size(); ++i) weights[i] = table.weight(i);
+  return weights;
+}
+
+class TexelStrategy : public LightStrategy {
+ public:
+  explicit TexelStrategy(const Emitters& emitters) : emitters_(emitters) {}
+
+  std::string name() const override { return "texel"; }
+
+  std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint&) const override {
+    const AliasTable::Pick pick = alias_.sample(std::uint64_t(random[0]) | std::uint64_t(random[1]) << 32);
+    const std::uint32_t light = table_.light(pick.index);
+    const lightsampler::Barycentrics b = table_.point(pick.index, below_one(pick.u),
+                                                      lightsampler::uniform_float(random[2]),
+                                                      lightsampler::uniform_float(random[3]));
+    // Rounding can put a point on its cell's edge into the neighbouring texel: its density is
+    // what that texel reads, as pdf() gives it; one without density carries nothing.
+    const float p = density(light, b.b1, b.b2);
+    if (!(p > 0.0f)) return std::nullopt;
+    return light_point(emitters_, light, b.b1, b.b2, p, p);
+  }
+
+  float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint&) const override {
+    return density(light, b1, b2);
+  }
+
+  StrategySetup setup() const override { return {build_ms_, table_.bytes() + alias_.bytes()}; }
+
+ private:
+  float density(std::uint32_t light, float b1, float b2) const {
+    return float(double(emitters_.density(light, b1, b2)) / table_.total_weight());
+  }
+
+  const Emitters& emitters_;
+  // Built in this order; the set-up time is what they took.
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  PieceTable table_{emitters_};
+  AliasTable alias_{piece_weights(table_)};
+  double build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+};
+
+}  // namespace
+
+std::unique_ptr<LightStrategy> make_texel_strategy(const Emitters& emitters) {
+  return std::make_unique<TexelStrategy>(emitters);
+}
+
+}  // namespace tracer
