@@ -100,8 +100,9 @@ class Mesh:
     def __init__(self):
         self.positions, self.normals, self.uvs, self.indices = [], [], [], []
 
-    def add_grid(self, point, normal, cols, rows):
-        """A patch of cols x rows quads of point(s, t), s and t in [0, 1], with UV = (s, t).
+    def add_grid(self, point, normal, cols, rows, uv=(0.0, 0.0, 1.0, 1.0)):
+        """A patch of cols x rows quads of point(s, t), s and t in [0, 1], with UV (s, t) mapped
+        onto the rectangle uv = (u0, v0, u1, v1) of the texture (all of it by default).
 
         The normals decide which side is the front: each triangle is wound counter-clockwise as
         seen from the side its normals point to (glTF's front face), whatever the parametrization.
@@ -113,7 +114,7 @@ class Mesh:
                 s, t = i / cols, j / rows
                 self.positions.append(point(s, t))
                 self.normals.append(normalize(normal(s, t)))
-                self.uvs.append((s, t))
+                self.uvs.append((uv[0] + s * (uv[2] - uv[0]), uv[1] + t * (uv[3] - uv[1])))
         for j in range(rows):
             for i in range(cols):
                 a = base + j * (cols + 1) + i
@@ -130,12 +131,20 @@ class Mesh:
             b, c = c, b  # wind it counter-clockwise around its normals
         self.indices += [a, b, c]
 
-    def add_quad(self, corner, edge_s, edge_t, normal, cols=1):
-        """A flat parallelogram corner + s edge_s + t edge_t facing `normal`; UV (0, 0) at
+    def add_quad(self, corner, edge_s, edge_t, normal, cols=1, rows=1, uv=(0.0, 0.0, 1.0, 1.0)):
+        """A flat parallelogram corner + s edge_s + t edge_t facing `normal`; UV (u0, v0) at
         `corner`, which is the image's top-left as seen from the front when edge_s points right
         and edge_t down."""
         self.add_grid(lambda s, t: add(add(corner, mul(edge_s, s)), mul(edge_t, t)),
-                      lambda s, t: normal, cols, 1)
+                      lambda s, t: normal, cols, rows, uv)
+
+    def extend(self, other):
+        """Appends another mesh's triangles."""
+        base = len(self.positions)
+        self.positions += other.positions
+        self.normals += other.normals
+        self.uvs += other.uvs
+        self.indices += [base + i for i in other.indices]
 
 
 def room(x0, x1, height, z0, z1):
@@ -225,6 +234,7 @@ class Gltf:
         self.name = name
         self.blob = bytearray()
         self.textures = []
+        self.facing_away = set()
         self.doc = {
             "asset": {"version": "2.0", "generator": GENERATOR},
             "extensionsUsed": ["KHR_materials_emissive_strength"],
@@ -265,29 +275,40 @@ class Gltf:
             "bufferView": self._view(data, ELEMENT_ARRAY_BUFFER), "componentType": UNSIGNED_INT,
             "count": len(values), "type": "SCALAR"})
 
-    def material(self, name, base_color, metallic=0.0, roughness=0.9):
+    def material(self, name, base_color, metallic=0.0, roughness=0.9, double_sided=False):
         return self._append("materials", {
             "name": name,
             "pbrMetallicRoughness": {"baseColorFactor": list(base_color) + [1.0],
                                      "metallicFactor": metallic, "roughnessFactor": roughness},
-            "doubleSided": False})
+            "doubleSided": double_sided})
 
-    def emissive_material(self, name, texture, strength):
-        """Black and rough, emitting `texture` times `strength` (the radiance of a white texel)."""
+    def _texture(self, texture):
+        """The glTF texture of `texture`, added with its image the first time it is used."""
         if not self.doc["samplers"]:  # texel for texel, as the light sampler reads the map
             self.doc["samplers"].append({"magFilter": NEAREST, "minFilter": NEAREST,
                                          "wrapS": CLAMP_TO_EDGE, "wrapT": CLAMP_TO_EDGE})
-        self.textures.append(texture)
-        image = self._append("images", {"uri": texture.name})
-        index = self.material(name, (0.02, 0.02, 0.02), 0.0, 0.9)
+        if texture not in self.textures:
+            self.textures.append(texture)
+            image = self._append("images", {"uri": texture.name})
+            self._append("textures", {"sampler": 0, "source": image})
+        return self.textures.index(texture)
+
+    def emissive_material(self, name, texture, strength, double_sided=False):
+        """Black and rough, emitting `texture` times `strength` (the radiance of a white texel),
+        from both faces if `double_sided`."""
+        texture_index = self._texture(texture)
+        index = self.material(name, (0.02, 0.02, 0.02), 0.0, 0.9, double_sided)
         self.doc["materials"][index].update({
-            "emissiveTexture": {"index": self._append("textures", {"sampler": 0, "source": image})},
+            "emissiveTexture": {"index": texture_index},
             "emissiveFactor": [1.0, 1.0, 1.0],
             "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": strength}}})
         return index
 
-    def mesh(self, name, mesh, material):
-        """A mesh node with one triangle primitive."""
+    def mesh(self, name, mesh, material, facing_away=False):
+        """A mesh node with one triangle primitive; an emitter `facing_away` from the camera on
+        purpose is exempt from check()'s test that the camera sees its front."""
+        if facing_away:
+            self.facing_away.add(name)
         primitive = {
             "attributes": {"POSITION": self._vectors(mesh.positions, bounds=True),
                            "NORMAL": self._vectors(mesh.normals),
@@ -310,7 +331,7 @@ class Gltf:
 
     def write(self, folder):
         self.doc["buffers"].append({"uri": self.name + ".bin", "byteLength": len(self.blob)})
-        check(self.doc, bytes(self.blob))
+        check(self.doc, bytes(self.blob), self.facing_away)
         folder.mkdir(parents=True, exist_ok=True)
         (folder / (self.name + ".gltf")).write_text(json.dumps(self.doc, indent=1) + "\n")
         (folder / (self.name + ".bin")).write_bytes(bytes(self.blob))
@@ -348,10 +369,11 @@ def read_accessor(doc, blob, index):
     return [flat[i:i + width] for i in range(0, len(flat), width)] if width > 1 else list(flat)
 
 
-def check(doc, blob):
+def check(doc, blob, facing_away=()):
     """Asserts the document is consistent with its buffer: views and accessors lie within it,
     attribute counts agree, POSITION bounds match the bytes, indices are in range, every triangle
-    is wound counter-clockwise around its normals, and the camera sees each emitter's front faces."""
+    is wound counter-clockwise around its normals, and the camera sees each emitter's front faces
+    (but those of the meshes named in `facing_away`)."""
     assert len(blob) == doc["buffers"][0]["byteLength"] and len(blob) % 4 == 0
     for view in doc["bufferViews"]:
         assert view["byteOffset"] % 4 == 0
@@ -375,7 +397,7 @@ def check(doc, blob):
                 face = cross(sub(p[b], p[a]), sub(p[c], p[a]))
                 assert dot(face, add(add(n[a], n[b]), n[c])) > 0, (mesh["name"], t // 3)
                 facing_camera += dot(face, sub(eye, p[a])) > 0
-            assert not emitter or facing_camera > 0, mesh["name"]
+            assert not emitter or facing_camera > 0 or mesh["name"] in facing_away, mesh["name"]
 
 
 def write_settings(folder, title, spp, max_depth=4, lights='"auto"'):
@@ -677,8 +699,241 @@ def lantern():
     return gltf, "Lantern", 16
 
 
+# --- scene 6: night-street ----------------------------------------------------------------------
+
+# A stroke font on a 2 x 4 lattice (x right, y down): each letter a few segments, as a neon sign
+# bends its tubes.
+STROKES = {
+    "A": [(0, 4, 1, 0), (1, 0, 2, 4), (0.5, 2.5, 1.5, 2.5)], "B": [(0, 0, 0, 4), (0, 0, 1.6, 0.6), (1.6, 0.6, 0, 2), (0, 2, 2, 3), (2, 3, 0, 4)],
+    "C": [(2, 0, 0, 0), (0, 0, 0, 4), (0, 4, 2, 4)], "D": [(0, 0, 0, 4), (0, 0, 2, 1), (2, 1, 2, 3), (2, 3, 0, 4)],
+    "E": [(2, 0, 0, 0), (0, 0, 0, 4), (0, 4, 2, 4), (0, 2, 1.5, 2)], "F": [(2, 0, 0, 0), (0, 0, 0, 4), (0, 2, 1.5, 2)],
+    "H": [(0, 0, 0, 4), (2, 0, 2, 4), (0, 2, 2, 2)], "I": [(1, 0, 1, 4), (0.3, 0, 1.7, 0), (0.3, 4, 1.7, 4)],
+    "K": [(0, 0, 0, 4), (2, 0, 0, 2), (0, 2, 2, 4)], "L": [(0, 0, 0, 4), (0, 4, 2, 4)],
+    "M": [(0, 4, 0, 0), (0, 0, 1, 2), (1, 2, 2, 0), (2, 0, 2, 4)], "N": [(0, 4, 0, 0), (0, 0, 2, 4), (2, 4, 2, 0)],
+    "O": [(0, 0, 2, 0), (2, 0, 2, 4), (2, 4, 0, 4), (0, 4, 0, 0)], "P": [(0, 4, 0, 0), (0, 0, 2, 0), (2, 0, 2, 2), (2, 2, 0, 2)],
+    "R": [(0, 4, 0, 0), (0, 0, 2, 0), (2, 0, 2, 2), (2, 2, 0, 2), (0.8, 2, 2, 4)], "S": [(2, 0, 0, 0), (0, 0, 0, 2), (0, 2, 2, 2), (2, 2, 2, 4), (2, 4, 0, 4)],
+    "T": [(0, 0, 2, 0), (1, 0, 1, 4)], "U": [(0, 0, 0, 4), (0, 4, 2, 4), (2, 4, 2, 0)],
+    "V": [(0, 0, 1, 4), (1, 4, 2, 0)], "W": [(0, 0, 0.5, 4), (0.5, 4, 1, 2), (1, 2, 1.5, 4), (1.5, 4, 2, 0)],
+    "Y": [(0, 0, 1, 2), (2, 0, 1, 2), (1, 2, 1, 4)], "Z": [(0, 0, 2, 0), (2, 0, 0, 4), (0, 4, 2, 4)],
+    "G": [(2, 0, 0, 0), (0, 0, 0, 4), (0, 4, 2, 4), (2, 4, 2, 2), (2, 2, 1, 2)], "J": [(2, 0, 2, 4), (2, 4, 0, 4), (0, 4, 0, 3)],
+    "X": [(0, 0, 2, 4), (2, 0, 0, 4)],
+}
+SIGN_WORDS = ["BAR", "HOTEL", "PIZZA", "OPEN", "CAFE", "NOODLES", "CLUB", "BOOKS", "RAMEN", "DINER",
+              "JAZZ", "TATTOO", "SUSHI", "KEBAB", "RADIO", "WINE"]
+NEON_COLOURS = [(0.1, 0.8, 1.0), (1.0, 0.1, 0.6), (1.0, 0.85, 0.1), (0.2, 1.0, 0.3), (1.0, 0.45, 0.05),
+                (0.6, 0.3, 1.0), (1.0, 0.15, 0.1)]
+
+
+class Atlas:
+    """A texture painted region by region: each region a rectangle of texels with a painter of its
+    own, pixel(x, y) -> linear RGB in region coordinates. uv(region) is its UV rectangle."""
+
+    def __init__(self, name, width, height):
+        self.name, self.width, self.height = name, width, height
+        self.texels = [[(0.0, 0.0, 0.0)] * width for _ in range(height)]
+
+    def paint(self, x0, y0, w, h, pixel):
+        for y in range(h):
+            row = self.texels[y0 + y]
+            for x in range(w):
+                row[x0 + x] = pixel(x, y)
+        return (x0 / self.width, y0 / self.height, (x0 + w) / self.width, (y0 + h) / self.height)
+
+    def texture(self):
+        return Texture(self.name, self.width, self.height, lambda x, y: self.texels[y][x])
+
+
+def word_strokes(word, width, height, colour):
+    """The word centred in a width x height region, as neon_pixel's (shape, colour) pairs."""
+    size = min(height * 0.62 / 4, width * 0.9 / (3 * len(word)))  # texels per lattice step
+    left, top = (width - (3 * len(word) - 1) * size) / 2, (height - 4 * size) / 2
+    strokes = []
+    for k, letter in enumerate(word):
+        x = left + 3 * k * size
+        for ax, ay, bx, by in STROKES[letter]:
+            strokes.append((segment(x + ax * size, top + ay * size, x + bx * size, top + by * size), colour))
+    return strokes
+
+
+def window_pixel(rng, width, height):
+    """A lit window seen from the street: a warm or cool interior falling off from a lamp, a few
+    dark silhouettes, mullions, and sometimes a half-drawn curtain."""
+    warm = rng.random() < 0.7
+    glow = (1.0, 0.7, 0.4) if warm else (0.6, 0.8, 1.0)
+    lamp_x, lamp_y = rng.uniform(0.2, 0.8), rng.uniform(0.1, 0.4)
+    panes = rng.choice([1, 2, 3])
+    curtain = rng.random() < 0.4
+    shapes = [(rng.uniform(0.1, 0.9), rng.uniform(0.5, 0.9), rng.uniform(0.08, 0.2)) for _ in range(rng.randint(0, 3))]
+
+    def pixel(x, y):
+        u, v = (x + 0.5) / width, (y + 0.5) / height
+        if min(u, v, 1 - u, 1 - v) < 0.04 or abs((u * panes) % 1.0) < 0.03 * panes:
+            return (0.0, 0.0, 0.0)  # frame and mullions
+        level = 0.25 + 0.75 * math.exp(-((u - lamp_x) ** 2 + (v - lamp_y) ** 2) / 0.08)
+        if curtain and u < 0.35:
+            level *= 0.3
+        if any(math.hypot(u - cx, (v - cy) * 0.6) < r for cx, cy, r in shapes):
+            level *= 0.08
+        return mul(glow, level)
+    return pixel
+
+
+def lamp_pixel(size):
+    """A street lamp's diffuser seen from below: bright in the middle, falling to zero at the rim."""
+    def pixel(x, y):
+        r = math.hypot((x + 0.5) / size - 0.5, (y + 0.5) / size - 0.5) * 2
+        return mul((1.0, 0.82, 0.55), max(0.0, 1.0 - r * r))
+    return pixel
+
+
+def screen_pixel(rng, width, height, bars):
+    """A video screen's frame: a dark ground with bright moving-image shapes: discs, bars and a
+    band of large letters' strokes, high contrast."""
+    discs = [(rng.uniform(0.1, 0.9), rng.uniform(0.15, 0.85), rng.uniform(0.04, 0.12), rng.choice(NEON_COLOURS))
+             for _ in range(6)]
+    stripes = [(rng.uniform(0.0, 0.8), rng.uniform(0.05, 0.2), rng.choice(NEON_COLOURS)) for _ in range(bars)]
+
+    def pixel(x, y):
+        u, v = (x + 0.5) / width, (y + 0.5) / height
+        rgb = mix((0.02, 0.02, 0.06), (0.05, 0.02, 0.1), v)
+        for cu, cv, r, colour in discs:
+            if math.hypot((u - cu) * width / height, v - cv) < r:
+                rgb = colour
+        for start, thickness, colour in stripes:
+            if start < v < start + thickness and (u * 7) % 1.0 < 0.8:
+                rgb = mul(colour, 0.8)
+        return rgb
+    return pixel
+
+
+def facade(x, z0, z1, height, facing):
+    """A street facade at x from z0 to z1 (z0 > z1), facing +x or -x, with pilasters every 5 m and
+    a kerb-high plinth: shadows and edges for the signs to light."""
+    mesh = Mesh()
+    length = z0 - z1
+    wall = Mesh()
+    corner = (x, height, z1) if facing > 0 else (x, height, z0)
+    edge = axis(2, length) if facing > 0 else axis(2, -length)
+    wall.add_quad(corner, edge, axis(1, -height), (facing, 0, 0))
+    mesh.extend(wall)
+    z = z0 - 2.5
+    while z > z1:
+        mesh.extend(box((x + facing * 0.15, height / 2, z), (0.3, height, 0.4)))
+        z -= 5.0
+    return mesh
+
+
+def street_emitters(rng):
+    """The street's emitters, by atlas: {atlas name: [(mesh, double_sided)]}, and the atlases."""
+    neon = Atlas("street-neon.png", 1024, 1024)      # 16 words of 512 x 128
+    windows = Atlas("street-windows.png", 512, 512)  # 16 windows of 128 x 128
+    screens = Atlas("street-screens.png", 1024, 512)  # screen, billboard, blades, lamp
+    regions = {"word": [], "window": []}
+    for k, word in enumerate(SIGN_WORDS):
+        x0, y0 = (k % 2) * 512, (k // 2) * 128
+        colour = NEON_COLOURS[k % len(NEON_COLOURS)]
+        regions["word"].append(neon.paint(x0, y0, 512, 128, neon_pixel(word_strokes(word, 512, 128, colour))))
+    for k in range(16):
+        regions["window"].append(windows.paint((k % 4) * 128, (k // 4) * 128, 128, 128, window_pixel(rng, 128, 128)))
+    screen_uv = screens.paint(0, 0, 512, 288, screen_pixel(rng, 512, 288, 3))
+    billboard_uv = screens.paint(512, 0, 512, 256, screen_pixel(rng, 512, 256, 5))
+    blade_uv = [screens.paint(512 + 64 * k, 256, 64, 192,
+                              neon_pixel(word_strokes(w, 64, 192, NEON_COLOURS[k % 7])))
+                for k, w in enumerate(["BAR", "INN", "TAXI", "POOL", "CAFE", "OPEN"][:6])]
+    lamp_uv = screens.paint(0, 320, 64, 64, lamp_pixel(64))
+
+    signs, lit_windows, lamps, blades, big = Mesh(), Mesh(), Mesh(), [], Mesh()
+    word = 0
+    for side in (-1, 1):
+        x = side * 6.0
+        for k in range(9):
+            z = -5.0 * k - 0.3
+            uv = regions["word"][word % 16]
+            word += 1
+            if (k, side) in ((3, -1), (6, 1)):
+                # Backlit letters mounted the wrong way round: they face the wall they hang on.
+                signs.add_quad((x - side * 0.25, 3.95, z - 3.5 * (side < 0)), axis(2, 3.5 * side * -1 if side < 0 else 3.5),
+                               axis(1, -0.7), (side, 0, 0), uv=uv)
+                continue
+            front = (-side, 0, 0)
+            corner = (x - side * 0.05, 3.95, z - (0 if side < 0 else 3.5))
+            edge = axis(2, -3.5) if side < 0 else axis(2, 3.5)
+            signs.add_quad(corner, edge, axis(1, -0.7), front, uv=uv)
+            if rng.random() < 0.6:  # a lit shop window under it
+                lit_windows.add_quad((x - side * 0.04, 2.6, z - (0.4 if side < 0 else 3.1)),
+                                     axis(2, -2.7) if side < 0 else axis(2, 2.7), axis(1, -2.0), front,
+                                     uv=regions["window"][rng.randrange(16)])
+            for floor in (6.5, 9.5):  # lit flats upstairs
+                if rng.random() < 0.45:
+                    wz = z - rng.uniform(0.5, 3.0)
+                    lit_windows.add_quad((x - side * 0.04, floor + 1.4, wz + (0 if side < 0 else -1.0)),
+                                         axis(2, -1.0) if side < 0 else axis(2, 1.0), axis(1, -1.4), front,
+                                         uv=regions["window"][rng.randrange(16)])
+        for k in range(4):  # street lamps over the kerbs, facing down
+            z = -10.0 * k - 4.0
+            lamps.add_quad((x * 0.68 - 0.25, 6.0, z - 0.15), axis(0, 0.5), axis(2, 0.3), (0, -1, 0), uv=lamp_uv)
+    for k in range(6):  # blade signs sticking out of the facades, along the street
+        side = -1 if k % 2 else 1
+        z = -7.0 * k - 2.0
+        x = side * (6.0 - 0.2)
+        mesh = Mesh()
+        inner = (x - side * 0.7, 5.0, z)
+        if k < 3:  # two-sided, seen from both ways along the street
+            mesh.add_quad(inner, axis(0, side * 0.6), axis(1, -1.8), (0, 0, 1), uv=blade_uv[k])
+            blades.append((mesh, True))
+        else:  # one-sided, facing away from the camera, down the street
+            mesh.add_quad((inner[0] + side * 0.6, 5.0, z), axis(0, -side * 0.6), axis(1, -1.8), (0, 0, -1), uv=blade_uv[k])
+            blades.append((mesh, False))
+    # A large video screen on the building closing the street, and a billboard high on the right.
+    big.add_quad((-4.0, 8.5, -45.9), axis(0, 8.0), axis(1, -4.5), (0, 0, 1), cols=8, rows=4, uv=screen_uv)
+    big.add_quad((5.9, 12.0, -16.0), axis(2, 6.0), axis(1, -3.0), (-1, 0, 0), cols=2, rows=2, uv=billboard_uv)
+    atlases = [neon.texture(), windows.texture(), screens.texture()]
+    return {"signs": signs, "windows": lit_windows, "lamps": lamps, "blades": blades, "screens": big}, atlases
+
+
+def night_street():
+    """A street at night lit by 60-odd textured emitters at every distance and orientation:
+    neon signs, shop windows, flats upstairs, lamps, blade signs, a billboard and a video screen."""
+    rng = random.Random(21)
+    gltf = Gltf("night-street")
+    brick = gltf.material("brick", (0.35, 0.25, 0.2), 0.0, 0.85)
+    for side in (-1, 1):
+        gltf.mesh(f"facade {'left' if side < 0 else 'right'}", facade(side * 6.0, 5.0, -46.0, 12.0, -side), brick)
+    end = Mesh()
+    end.add_quad((-6.0, 12.0, -46.0), axis(0, 12.0), axis(1, -12.0), (0, 0, 1))
+    gltf.mesh("end of the street", end, brick)
+    road, pavement = Mesh(), Mesh()
+    road.add_quad((-4.0, 0.0, -46.0), axis(0, 8.0), axis(2, 51.0), (0, 1, 0))
+    for side in (-1, 1):
+        x0 = -6.0 if side < 0 else 4.0
+        pavement.add_quad((x0, 0.15, -46.0), axis(0, 2.0), axis(2, 51.0), (0, 1, 0))
+        kerb = (-4.0, 0.15, -46.0) if side < 0 else (4.0, 0.0, -46.0)
+        pavement.add_quad(kerb, axis(1, -0.15) if side < 0 else axis(1, 0.15), axis(2, 51.0), (-side, 0, 0))
+    gltf.mesh("wet road", road, gltf.material("wet asphalt", (0.08, 0.08, 0.09), 0.0, 0.12))
+    gltf.mesh("pavements", pavement, gltf.material("paving", (0.4, 0.4, 0.38), 0.0, 0.8))
+    props = Mesh()
+    for k in range(6):
+        props.extend(cylinder((-3.8 if k % 2 else 3.8, 0.0, -6.0 * k - 1.0), 0.12, 0.9, 12))
+    for side in (-1, 1):
+        for k in range(4):
+            props.extend(cylinder((side * 4.08, 0.15, -10.0 * k - 4.0), 0.08, 5.9, 8))
+    props.extend(box((-2.2, 0.6, -12.0), (1.8, 1.2, 4.2), 0.05))  # a parked van's shape
+    gltf.mesh("posts and bollards", props, gltf.material("painted steel", (0.3, 0.32, 0.35), 1.0, 0.45))
+    emitters, atlases = street_emitters(rng)
+    neon, windows, screens = atlases
+    gltf.mesh("neon signs", emitters["signs"], gltf.emissive_material("neon", neon, 60.0))
+    gltf.mesh("lit windows", emitters["windows"], gltf.emissive_material("windows", windows, 4.0))
+    gltf.mesh("street lamps", emitters["lamps"], gltf.emissive_material("lamps", screens, 400.0))
+    for k, (mesh, double_sided) in enumerate(emitters["blades"]):
+        material = gltf.emissive_material(f"blade sign {k}", screens, 60.0, double_sided)
+        gltf.mesh(f"blade sign {k}", mesh, material, facing_away=not double_sided)
+    gltf.mesh("screens", emitters["screens"], gltf.emissive_material("screens", screens, 12.0))
+    gltf.camera((1.2, 1.7, 4.0), (-0.6, 3.0, -30.0), 0.85)
+    return gltf, "Night street", 16
+
+
 SCENES = {"neon-sign": neon_sign, "gradient-screen": gradient_screen, "mosaic": mosaic,
-          "tile-emitter": tile_emitter, "lantern": lantern}
+          "tile-emitter": tile_emitter, "lantern": lantern, "night-street": night_street}
 
 
 def main():
@@ -687,11 +942,15 @@ def main():
         gltf, title, spp = SCENES[name]()
         gltf.write(out / name)
         write_settings(out / name, title, spp)
-        triangles = [gltf.doc["accessors"][m["primitives"][0]["indices"]]["count"] // 3
-                     for m in gltf.doc["meshes"]]  # each scene's emitter is its last mesh
+        triangles = emitting = 0
+        for m in gltf.doc["meshes"]:
+            primitive = m["primitives"][0]
+            count = gltf.doc["accessors"][primitive["indices"]]["count"] // 3
+            triangles += count
+            emitting += count if "emissiveTexture" in gltf.doc["materials"][primitive["material"]] else 0
         maps = ", ".join(f"{t.name} {t.width}x{t.height}, {100 * t.nonzero_fraction():.1f}% of "
                          "texels non-zero" for t in gltf.textures)
-        print(f"{name}: {sum(triangles)} triangles, {triangles[-1]} emitting; {maps}")
+        print(f"{name}: {triangles} triangles, {emitting} emitting; {maps}")
 
 
 if __name__ == "__main__":

@@ -1,9 +1,13 @@
 # Regenerates the reference images of the render tests with the `power` strategy (independent
-# of Triangle Rejection Sampling), TRS_REFERENCE_SPP samples per pixel:
-#   cmake -D RENDER=build/bin/trs-render -P tests/render/make_references.cmake
+# of Triangle Rejection Sampling), TRS_REFERENCE_SPP samples per pixel; every scene's, or those
+# SCENES names (a semicolon-separated list):
+#   cmake -D RENDER=build/bin/trs-render [-D SCENES=night-street] -P tests/render/make_references.cmake
 include(${CMAKE_CURRENT_LIST_DIR}/reference_settings.cmake)
 get_filename_component(root ${CMAKE_CURRENT_LIST_DIR}/../.. ABSOLUTE)
-foreach(scene IN LISTS TRS_REFERENCE_SCENES)
+if(NOT SCENES)
+  set(SCENES ${TRS_REFERENCE_SCENES})
+endif()
+foreach(scene IN LISTS SCENES)
   set(prefix ${CMAKE_CURRENT_LIST_DIR}/references/${scene})
   message(STATUS "${scene}: ${TRS_REFERENCE_SPP} spp")
   execute_process(
