@@ -823,6 +823,9 @@ def facade(x, z0, z1, height, facing):
     return mesh
 
 
+STREET_END = -86.0  # the street runs from z = 5 (behind the camera) to here
+
+
 def street_emitters(rng):
     """The street's emitters, by atlas: {atlas name: [(mesh, double_sided)]}, and the atlases."""
     neon = Atlas("street-neon.png", 1024, 1024)      # 16 words of 512 x 128
@@ -846,11 +849,11 @@ def street_emitters(rng):
     word = 0
     for side in (-1, 1):
         x = side * 6.0
-        for k in range(9):
+        for k in range(17):
             z = -5.0 * k - 0.3
             uv = regions["word"][word % 16]
             word += 1
-            if (k, side) in ((3, -1), (6, 1)):
+            if (k, side) in ((3, -1), (6, 1), (12, -1)):
                 # Backlit letters mounted the wrong way round: they face the wall they hang on.
                 signs.add_quad((x - side * 0.25, 3.95, z - 3.5 * (side < 0)), axis(2, 3.5 * side * -1 if side < 0 else 3.5),
                                axis(1, -0.7), (side, 0, 0), uv=uv)
@@ -869,24 +872,27 @@ def street_emitters(rng):
                     lit_windows.add_quad((x - side * 0.04, floor + 1.4, wz + (0 if side < 0 else -1.0)),
                                          axis(2, -1.0) if side < 0 else axis(2, 1.0), axis(1, -1.4), front,
                                          uv=regions["window"][rng.randrange(16)])
-        for k in range(4):  # street lamps over the kerbs, facing down
+        for k in range(9):  # street lamps over the kerbs, facing down
             z = -10.0 * k - 4.0
             lamps.add_quad((x * 0.68 - 0.25, 6.0, z - 0.15), axis(0, 0.5), axis(2, 0.3), (0, -1, 0), uv=lamp_uv)
-    for k in range(6):  # blade signs sticking out of the facades, along the street
+    for k in range(12):  # blade signs sticking out of the facades, along the street
         side = -1 if k % 2 else 1
         z = -7.0 * k - 2.0
         x = side * (6.0 - 0.2)
         mesh = Mesh()
         inner = (x - side * 0.7, 5.0, z)
-        if k < 3:  # two-sided, seen from both ways along the street
-            mesh.add_quad(inner, axis(0, side * 0.6), axis(1, -1.8), (0, 0, 1), uv=blade_uv[k])
+        if k % 4 < 2:  # two-sided, seen from both ways along the street
+            mesh.add_quad(inner, axis(0, side * 0.6), axis(1, -1.8), (0, 0, 1), uv=blade_uv[k % 6])
             blades.append((mesh, True))
         else:  # one-sided, facing away from the camera, down the street
-            mesh.add_quad((inner[0] + side * 0.6, 5.0, z), axis(0, -side * 0.6), axis(1, -1.8), (0, 0, -1), uv=blade_uv[k])
+            mesh.add_quad((inner[0] + side * 0.6, 5.0, z), axis(0, -side * 0.6), axis(1, -1.8), (0, 0, -1),
+                          uv=blade_uv[k % 6])
             blades.append((mesh, False))
-    # A large video screen on the building closing the street, and a billboard high on the right.
-    big.add_quad((-4.0, 8.5, -45.9), axis(0, 8.0), axis(1, -4.5), (0, 0, 1), cols=8, rows=4, uv=screen_uv)
+    # A large video screen on the building closing the street, and billboards high on the facades.
+    big.add_quad((-6.0, 10.5, STREET_END + 0.1), axis(0, 12.0), axis(1, -6.75), (0, 0, 1), cols=8, rows=4,
+                 uv=screen_uv)
     big.add_quad((5.9, 12.0, -16.0), axis(2, 6.0), axis(1, -3.0), (-1, 0, 0), cols=2, rows=2, uv=billboard_uv)
+    big.add_quad((-5.9, 12.0, -64.0), axis(2, -6.0), axis(1, -3.0), (1, 0, 0), cols=2, rows=2, uv=billboard_uv)
     atlases = [neon.texture(), windows.texture(), screens.texture()]
     return {"signs": signs, "windows": lit_windows, "lamps": lamps, "blades": blades, "screens": big}, atlases
 
@@ -898,24 +904,25 @@ def night_street():
     gltf = Gltf("night-street")
     brick = gltf.material("brick", (0.35, 0.25, 0.2), 0.0, 0.85)
     for side in (-1, 1):
-        gltf.mesh(f"facade {'left' if side < 0 else 'right'}", facade(side * 6.0, 5.0, -46.0, 12.0, -side), brick)
+        gltf.mesh(f"facade {'left' if side < 0 else 'right'}", facade(side * 6.0, 5.0, STREET_END, 12.0, -side), brick)
     end = Mesh()
-    end.add_quad((-6.0, 12.0, -46.0), axis(0, 12.0), axis(1, -12.0), (0, 0, 1))
+    end.add_quad((-6.0, 12.0, STREET_END), axis(0, 12.0), axis(1, -12.0), (0, 0, 1))
     gltf.mesh("end of the street", end, brick)
     road, pavement = Mesh(), Mesh()
-    road.add_quad((-4.0, 0.0, -46.0), axis(0, 8.0), axis(2, 51.0), (0, 1, 0))
+    length = 5.0 - STREET_END
+    road.add_quad((-4.0, 0.0, STREET_END), axis(0, 8.0), axis(2, length), (0, 1, 0))
     for side in (-1, 1):
         x0 = -6.0 if side < 0 else 4.0
-        pavement.add_quad((x0, 0.15, -46.0), axis(0, 2.0), axis(2, 51.0), (0, 1, 0))
-        kerb = (-4.0, 0.15, -46.0) if side < 0 else (4.0, 0.0, -46.0)
-        pavement.add_quad(kerb, axis(1, -0.15) if side < 0 else axis(1, 0.15), axis(2, 51.0), (-side, 0, 0))
+        pavement.add_quad((x0, 0.15, STREET_END), axis(0, 2.0), axis(2, length), (0, 1, 0))
+        kerb = (-4.0, 0.15, STREET_END) if side < 0 else (4.0, 0.0, STREET_END)
+        pavement.add_quad(kerb, axis(1, -0.15) if side < 0 else axis(1, 0.15), axis(2, length), (-side, 0, 0))
     gltf.mesh("wet road", road, gltf.material("wet asphalt", (0.08, 0.08, 0.09), 0.0, 0.12))
     gltf.mesh("pavements", pavement, gltf.material("paving", (0.4, 0.4, 0.38), 0.0, 0.8))
     props = Mesh()
-    for k in range(6):
+    for k in range(12):
         props.extend(cylinder((-3.8 if k % 2 else 3.8, 0.0, -6.0 * k - 1.0), 0.12, 0.9, 12))
     for side in (-1, 1):
-        for k in range(4):
+        for k in range(9):
             props.extend(cylinder((side * 4.08, 0.15, -10.0 * k - 4.0), 0.08, 5.9, 8))
     props.extend(box((-2.2, 0.6, -12.0), (1.8, 1.2, 4.2), 0.05))  # a parked van's shape
     gltf.mesh("posts and bollards", props, gltf.material("painted steel", (0.3, 0.32, 0.35), 1.0, 0.45))
@@ -927,7 +934,7 @@ def night_street():
     for k, (mesh, double_sided) in enumerate(emitters["blades"]):
         material = gltf.emissive_material(f"blade sign {k}", screens, 60.0, double_sided)
         gltf.mesh(f"blade sign {k}", mesh, material, facing_away=not double_sided)
-    gltf.mesh("screens", emitters["screens"], gltf.emissive_material("screens", screens, 12.0))
+    gltf.mesh("screens", emitters["screens"], gltf.emissive_material("screens", screens, 16.0))
     gltf.camera((1.2, 1.7, 4.0), (-0.6, 3.0, -30.0), 0.85)
     return gltf, "Night street", 16
 

@@ -90,6 +90,7 @@ LightBounds triangle_bounds(const std::array<glm::vec3, 3>& vertices, glm::vec3 
   b.cos_theta_o = two_sided ? -1.0f : 1.0f;
   b.cos_theta_e = 0.0f;
   b.power = power;
+  b.set_derived();
   return b;
 }
 
@@ -103,6 +104,7 @@ LightBounds merge(const LightBounds& a, const LightBounds& b) {
   merge_cones(a, b, m);
   m.cos_theta_e = std::min(a.cos_theta_e, b.cos_theta_e);
   m.power = a.power + b.power;
+  m.set_derived();
   return m;
 }
 

@@ -8,7 +8,9 @@
 // Built top-down: each node's lights split where the surface area orientation heuristic is
 // least, over 12 bins of their centres per axis (pbrt-v4's).
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -31,9 +33,17 @@ struct LightBounds {
   float cos_theta_o = 1.0f;
   float cos_theta_e = 1.0f;
   float power = 0.0f;
+  // What a walk would otherwise compute at every node, kept by set_derived().
+  float sin_theta_o = 0.0f;
+  float radius = 0.0f;  ///< of the box's bounding sphere, |diagonal| / 2
 
   glm::vec3 centre() const { return 0.5f * (lower + upper); }
   glm::vec3 diagonal() const { return upper - lower; }
+  /// Sets sin_theta_o and radius from the others.
+  void set_derived() {
+    sin_theta_o = std::sqrt(std::max(0.0f, 1.0f - cos_theta_o * cos_theta_o));
+    radius = 0.5f * glm::length(diagonal());
+  }
   bool operator==(const LightBounds&) const = default;
 };
 

@@ -99,7 +99,7 @@ ImportanceRange cycles_range(const LightBounds& b, const Extent& e, glm::vec3 no
 
   // theta: between the cone's axis and the direction from the node to the point.
   const float cos_theta = std::clamp(glm::dot(b.axis, -e.to_centre), -1.0f, 1.0f), sin_theta = sin_from_cos(cos_theta);
-  const float cos_o = b.cos_theta_o, sin_o = sin_from_cos(cos_o);
+  const float cos_o = b.cos_theta_o, sin_o = b.sin_theta_o;
   const float cos_e = b.cos_theta_e, sin_e = sin_from_cos(cos_e);
   const float cos_theta_minus_u = cos_theta * cos_u + sin_theta * sin_u;
   float cos_min_outgoing;
@@ -156,36 +156,29 @@ class CyclesImportance : public NodeImportance {
 }  // namespace
 
 float pbrt_importance(const LightBounds& b, const ShadingPoint& at) {
-  const glm::vec3 centre = b.centre();
-  const glm::vec3 from_centre = at.position - centre;
+  const glm::vec3 from_centre = at.position - b.centre();
   const float d2 = glm::dot(from_centre, from_centre);
   // pbrt-v4 clamps d^2 below by |diagonal| / 2, a length against a squared length, which
   // depends on the scene's units. Clamped here by (|diagonal| / 2)^2, the squared radius of the
   // box's bounding sphere: outside the sphere d^2 exceeds it anyway, and inside it every
   // direction may reach a light, so only the power and the clamped distance count.
-  const float r2 = 0.25f * glm::dot(b.diagonal(), b.diagonal());
+  const float r2 = b.radius * b.radius;
   if (d2 < r2) return b.power / r2;
 
-  const glm::vec3 wi = from_centre / std::sqrt(d2);
+  const float inverse_d = 1.0f / std::sqrt(d2);
+  const glm::vec3 wi = from_centre * inverse_d;
   // theta_b: the angle the bounding sphere subtends at the point.
-  const float sin_b = std::sqrt(r2 / d2), cos_b = sin_from_cos(sin_b);
+  const float sin_b = b.radius * inverse_d, cos_b = sin_from_cos(sin_b);
   // theta': the angle between the point and the nearest direction any light may emit along.
   const float cos_w = glm::dot(b.axis, wi), sin_w = sin_from_cos(cos_w);
-  const float sin_o = sin_from_cos(b.cos_theta_o);
-  const float cos_x = cos_minus_clamped(sin_w, cos_w, sin_o, b.cos_theta_o);
-  const float sin_x = sin_minus_clamped(sin_w, cos_w, sin_o, b.cos_theta_o);
+  const float cos_x = cos_minus_clamped(sin_w, cos_w, b.sin_theta_o, b.cos_theta_o);
+  const float sin_x = sin_minus_clamped(sin_w, cos_w, b.sin_theta_o, b.cos_theta_o);
   const float cos_emitted = cos_minus_clamped(sin_x, cos_x, sin_b, cos_b);
   if (cos_emitted <= b.cos_theta_e) return 0.0f;
   // theta'_i: incidence at the point, widened by theta_b.
   const float cos_i = std::abs(glm::dot(wi, at.normal)), sin_i = sin_from_cos(cos_i);
   const float cos_incident = cos_minus_clamped(sin_i, cos_i, sin_b, cos_b);
   return std::max(b.power * cos_emitted / d2 * cos_incident, 0.0f);
-}
-
-std::optional<float> proportional(float first, float second) {
-  const float total = first + second;
-  if (!(total > 0.0f)) return std::nullopt;
-  return first / total;
 }
 
 std::unique_ptr<NodeImportance> make_node_importance(TreeImportance kind, const Emitters& emitters) {

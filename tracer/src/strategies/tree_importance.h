@@ -24,7 +24,11 @@ float pbrt_importance(const LightBounds& bounds, const ShadingPoint& at);
 
 /// The first of two children's probability when they are picked in proportion to `first` and
 /// `second`; none when both are zero.
-std::optional<float> proportional(float first, float second);
+inline std::optional<float> proportional(float first, float second) {
+  const float total = first + second;
+  if (!(total > 0.0f)) return std::nullopt;
+  return first / total;
+}
 
 /// The importance `kind`. Cycles' reads a leaf's triangle from `emitters`, which must outlive it.
 std::unique_ptr<NodeImportance> make_node_importance(TreeImportance kind, const Emitters& emitters);
