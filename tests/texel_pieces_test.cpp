@@ -67,8 +67,8 @@ TEST(TexelPieces, IntegrateTheDensityAsTheCountingPassDoes) {
   }
 }
 
-// A piece cut again from its cell is the same piece, bit for bit; points drawn in it read its
-// texel, and the density it names is what Sampler::density reads there.
+// A point drawn in a piece by its cell is the point uniform_point draws in the piece, bit for bit;
+// points drawn in it read its texel, and the density it names is what Sampler::density reads there.
 TEST(TexelPieces, OneCellIsCutAsTheWholeTriangleCutsIt) {
   const trs_test::Mesh mesh = wide_triangles();
   const trs_test::Map map = trs_test::random_map(9, 7, 0.3, 8);
@@ -81,13 +81,13 @@ TEST(TexelPieces, OneCellIsCutAsTheWholeTriangleCutsIt) {
   for (std::uint32_t t = 0; t < sampler->triangle_count(); ++t) {
     sampler->texel_pieces(t, pieces);
     for (const TexelPiece& p : pieces) {
-      const auto again = sampler->texel_piece(t, p.cell_x, p.cell_y);
-      ASSERT_TRUE(again.has_value());
-      EXPECT_EQ(again->vertex_count, p.vertex_count);
-      EXPECT_EQ(again->vertices, p.vertices);
-      EXPECT_EQ(again->area, p.area);
       for (int i = 0; i < 4; ++i, ++points) {
-        const lightsampler::Barycentrics b = lightsampler::uniform_point(p, u(rng), u(rng), u(rng));
+        const float u_fan = u(rng), u0 = u(rng), u1 = u(rng);
+        const lightsampler::Barycentrics b = lightsampler::uniform_point(p, u_fan, u0, u1);
+        const auto by_cell = sampler->texel_piece_point(t, p.cell_x, p.cell_y, u_fan, u0, u1);
+        ASSERT_TRUE(by_cell.has_value());
+        EXPECT_EQ(by_cell->b1, b.b1);
+        EXPECT_EQ(by_cell->b2, b.b2);
         const auto texel = sampler->texel(t, b.b1, b.b2);
         ASSERT_TRUE(texel.has_value());
         if (texel->x != p.texel.x || texel->y != p.texel.y) {
@@ -100,7 +100,7 @@ TEST(TexelPieces, OneCellIsCutAsTheWholeTriangleCutsIt) {
   }
   EXPECT_GT(points, 1000);
   EXPECT_LE(elsewhere, points / 1000);
-  EXPECT_FALSE(sampler->texel_piece(0, 1000, 1000).has_value());
+  EXPECT_FALSE(sampler->texel_piece_point(0, 1000, 1000, 0.5f, 0.5f, 0.5f).has_value());
 }
 
 // Points drawn in a piece are uniform in it: over a fine grid of the barycentric plane, the

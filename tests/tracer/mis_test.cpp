@@ -67,7 +67,9 @@ TEST(Mis, LightAndBsdfWeightsSumToOne) {
     strategy->begin_frame(0);
     int checked = 0;
     for (int i = 0; i < 2000; ++i) {
-      const auto s = strategy->sample({std::uint32_t(rng()), std::uint32_t(rng()), std::uint32_t(rng()), std::uint32_t(rng())}, at);
+      LightRandom random;
+      for (auto& word : random) word = std::uint32_t(rng());
+      const auto s = strategy->sample(random, at);
       ASSERT_TRUE(s.has_value());
       ASSERT_EQ(s->mis_pdf, strategy->pdf(s->light, s->b1, s->b2, at)) << name(o);
       const glm::vec3 d = s->position - x;

@@ -172,7 +172,9 @@ glm::vec3 PathTracer::light_sample(const Vertex& vertex, const Bsdf& bsdf, PathR
   for (unsigned first = 0; first < candidates_; first += kBatch) {
     const unsigned batch = std::min(kBatch, candidates_ - first);
     for (unsigned i = 0; i < batch; ++i) {
-      words[i] = random.words();
+      const auto first = random.words(), second = random.words();
+      std::copy(first.begin(), first.end(), words[i].begin());
+      std::copy(second.begin(), second.end(), words[i].begin() + 4);
       strategy_.prefetch(words[i]);
     }
     for (unsigned i = 0; i < batch; ++i) {

@@ -163,10 +163,13 @@ class Sampler {
   /// `out` (cleared first): their densities times their areas integrate the density over the
   /// triangle exactly. A triangle without UV area is one piece.
   virtual void texel_pieces(std::uint32_t triangle, std::vector<TexelPiece>& out) const = 0;
-  /// The piece of one lattice cell, as texel_pieces gives it; none where the triangle does not
-  /// overlap that cell.
-  virtual std::optional<TexelPiece> texel_piece(std::uint32_t triangle, std::int64_t cell_x,
-                                                std::int64_t cell_y) const = 0;
+  /// A uniform point of the piece of one lattice cell (TexelPiece::cell_x, cell_y), cut as
+  /// texel_pieces cuts it, from three uniforms in [0, 1) as uniform_point takes them: a caller
+  /// that keeps its pieces by cell draws in them without keeping their polygons. None where the
+  /// triangle does not overlap that cell.
+  virtual std::optional<Barycentrics> texel_piece_point(std::uint32_t triangle, std::int64_t cell_x,
+                                                        std::int64_t cell_y, float u_fan, float u0,
+                                                        float u1) const = 0;
 };
 
 struct CpuOptions {

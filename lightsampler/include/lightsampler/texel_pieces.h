@@ -14,7 +14,7 @@ namespace lightsampler {
 
 struct TexelPiece {
   /// The lattice cell the piece lies in, in texels from UV (0, 0): beyond the map when UVs are,
-  /// so that wrapping texels are told apart. Sampler::texel_piece cuts it again from these.
+  /// so that wrapping texels are told apart. Sampler::texel_piece_point cuts it again from these.
   std::int64_t cell_x, cell_y;
   Texel texel;    ///< the texel the cell reads, after addressing
   float density;  ///< that texel's density, scaled: what Sampler::density reads in the piece

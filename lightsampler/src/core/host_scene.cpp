@@ -79,13 +79,15 @@ void HostScene::texel_pieces(std::uint32_t triangle, std::vector<lightsampler::T
       [&](std::int64_t ix, std::int64_t iy) { return cell_density(map, ix, iy) > 0.0f; });
 }
 
-std::optional<lightsampler::TexelPiece> HostScene::texel_piece(std::uint32_t triangle, std::int64_t cell_x,
-                                                               std::int64_t cell_y) const {
+std::optional<Barycentrics> HostScene::texel_piece_point(std::uint32_t triangle, std::int64_t cell_x,
+                                                         std::int64_t cell_y, float u_fan, float u0,
+                                                         float u1) const {
   const TexelTriangle& t = texel_triangle(triangle);
   if (t.map == kNoMap) return std::nullopt;
   const std::optional<TexelPiece> piece = core::texel_piece(t, cell_x, cell_y);
   if (!piece) return std::nullopt;
-  return public_piece(*piece, maps_[t.map], t.map);
+  const auto [b1, b2] = point_in(piece->polygon, piece->area, u_fan, u0, u1);
+  return Barycentrics{float(b1), float(b2)};
 }
 
 void HostScene::build_texel_triangles(std::size_t map) {

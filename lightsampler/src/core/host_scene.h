@@ -27,10 +27,10 @@ class HostScene {
   float density(std::uint32_t triangle, float b1, float b2) const;
   /// The texel density() reads there.
   std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const;
-  /// Sampler::texel_pieces and Sampler::texel_piece.
+  /// Sampler::texel_pieces and Sampler::texel_piece_point.
   void texel_pieces(std::uint32_t triangle, std::vector<lightsampler::TexelPiece>& out) const;
-  std::optional<lightsampler::TexelPiece> texel_piece(std::uint32_t triangle, std::int64_t cell_x,
-                                                      std::int64_t cell_y) const;
+  std::optional<Barycentrics> texel_piece_point(std::uint32_t triangle, std::int64_t cell_x,
+                                                std::int64_t cell_y, float u_fan, float u0, float u1) const;
 
   std::span<const TriangleRecord> triangles() const { return triangles_; }
   std::span<const DensityMap> maps() const { return maps_; }

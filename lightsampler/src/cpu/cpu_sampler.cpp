@@ -77,9 +77,9 @@ class CpuSampler final : public Sampler {
   void texel_pieces(std::uint32_t triangle, std::vector<TexelPiece>& out) const override {
     scene_.texel_pieces(triangle, out);
   }
-  std::optional<TexelPiece> texel_piece(std::uint32_t triangle, std::int64_t cell_x,
-                                        std::int64_t cell_y) const override {
-    return scene_.texel_piece(triangle, cell_x, cell_y);
+  std::optional<Barycentrics> texel_piece_point(std::uint32_t triangle, std::int64_t cell_x, std::int64_t cell_y,
+                                                float u_fan, float u0, float u1) const override {
+    return scene_.texel_piece_point(triangle, cell_x, cell_y, u_fan, u0, u1);
   }
 
   void generate(const FrameRequest& request, Frame& frame) override {

@@ -46,8 +46,18 @@ static_assert(sizeof(LightSample) == 64);
 LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,
                         float pdf, float mis_pdf);
 
-/// What a strategy draws one point from: four independent uniform 32-bit words.
-using LightRandom = std::array<std::uint32_t, 4>;
+/// What a strategy draws one point from: eight independent uniform 32-bit words (two blocks of
+/// the path's Philox stream).
+using LightRandom = std::array<std::uint32_t, 8>;
+
+/// Words k and k + 1 of `random` as one uniform 64-bit word.
+inline std::uint64_t word64(const LightRandom& random, int k) {
+  return std::uint64_t(random[k]) | std::uint64_t(random[k + 1]) << 32;
+}
+
+/// A uniform double in [0, 1) from 53 bits of words k and k + 1: a walk down a deep tree reads a
+/// few bits of it at every level.
+inline double uniform53(const LightRandom& random, int k) { return double(word64(random, k) >> 11) * 0x1p-53; }
 
 /// Where lights are seen from: a shading point. Strategies that weigh lights by distance and
 /// orientation (the light tree) read it; the others draw the same whatever it is.

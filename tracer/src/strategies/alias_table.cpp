@@ -4,9 +4,16 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace tracer {
+namespace tracer::alias {
+namespace {
 
-AliasTable::AliasTable(std::span<const double> weights) : columns_(weights.size()) {
+__extension__ using Uint128 = unsigned __int128;  // GCC's and Clang's; ISO C++ has none
+
+constexpr double kBelowOne = 0x1.fffffffffffffp-1;
+
+}  // namespace
+
+void build(std::span<const double> weights, std::span<Column> columns) {
   if (weights.size() >= (std::size_t(1) << 32))
     throw std::invalid_argument("an alias table holds fewer than 2^32 entries");
   double total = 0.0;
@@ -27,7 +34,7 @@ AliasTable::AliasTable(std::span<const double> weights) : columns_(weights.size(
   while (!small.empty() && !large.empty()) {
     const std::uint32_t s = small.back(), l = large.back();
     small.pop_back();
-    columns_[s] = {share[s], l};
+    columns[s] = {float(share[s]), l};
     share[l] -= 1.0 - share[s];
     if (share[l] < 1.0) {
       large.pop_back();
@@ -35,30 +42,25 @@ AliasTable::AliasTable(std::span<const double> weights) : columns_(weights.size(
     }
   }
   // What rounding leaves on either list is a full column.
-  for (const std::uint32_t i : large) columns_[i] = {1.0, i};
-  for (const std::uint32_t i : small) columns_[i] = {1.0, i};
+  for (const std::uint32_t i : large) columns[i] = {1.0f, i};
+  for (const std::uint32_t i : small) columns[i] = {1.0f, i};
 }
 
-namespace {
-
-__extension__ using Uint128 = unsigned __int128;  // GCC's and Clang's; ISO C++ has none
-
-}  // namespace
-
-AliasTable::Pick AliasTable::sample(std::uint64_t word) const {
-  const Uint128 product = Uint128(word) * columns_.size();
+Pick sample(std::span<const Column> columns, std::uint64_t word) {
+  const Uint128 product = Uint128(word) * columns.size();
   const auto column = std::size_t(product >> 64);
   const double coin = double(std::uint64_t(product) >> 11) * 0x1p-53;  // in [0, 1) exactly
-  const Column& c = columns_[column];
-  if (coin < c.threshold) return {column, coin / c.threshold};
-  return {c.alias, std::min((coin - c.threshold) / (1.0 - c.threshold), 0x1.fffffffffffffp-1)};
+  const Column& c = columns[column];
+  const double threshold = c.threshold;
+  if (coin < threshold) return {column, coin / threshold};
+  return {c.alias, std::min((coin - threshold) / (1.0 - threshold), kBelowOne)};
 }
 
-double AliasTable::probability(std::size_t index) const {
-  double p = columns_[index].threshold;
-  for (const Column& c : columns_)
-    if (c.alias == index && c.threshold < 1.0) p += 1.0 - c.threshold;
-  return p / double(columns_.size());
+double probability(std::span<const Column> columns, std::size_t index) {
+  double p = columns[index].threshold;
+  for (const Column& c : columns)
+    if (c.alias == index && c.threshold < 1.0f) p += 1.0 - double(c.threshold);
+  return p / double(columns.size());
 }
 
-}  // namespace tracer
+}  // namespace tracer::alias

@@ -1,6 +1,6 @@
 #include "strategies/piece_table.h"
 
-#include <algorithm>
+#include <array>
 #include <atomic>
 #include <limits>
 #include <stdexcept>
@@ -32,7 +32,7 @@ std::string too_many(std::size_t max_pieces) {
 }  // namespace
 
 PieceTable::PieceTable(const Emitters& emitters, std::size_t max_pieces)
-    : emitters_(emitters), first_(emitters.count() + 1, 0) {
+    : emitters_(emitters), first_(emitters.count() + 1, 0), light_weight_(emitters.count(), 0.0) {
   const lightsampler::Sampler& sampler = emitters.sampler();
   std::vector<LightPieces> lights(emitters.count());
   std::atomic<std::size_t> total{0};
@@ -55,51 +55,46 @@ PieceTable::PieceTable(const Emitters& emitters, std::size_t max_pieces)
   if (total > max_pieces) throw std::invalid_argument(too_many(max_pieces));
   if (total == 0) throw std::invalid_argument("the lights emit nothing: no texel piece to draw from");
   cells_.reserve(total);
-  running_.reserve(total);
+  weights_.reserve(total);
   for (std::uint32_t l = 0; l < emitters.count(); ++l) {
     first_[l] = cells_.size();
-    double sum = 0.0;
     for (std::size_t i = 0; i < lights[l].cells.size(); ++i) {
       cells_.push_back({l, lights[l].cells[i][0], lights[l].cells[i][1]});
-      running_.push_back(sum += lights[l].weights[i]);
+      weights_.push_back(lights[l].weights[i]);
+      light_weight_[l] += lights[l].weights[i];
     }
-    total_weight_ += sum;
+    total_weight_ += light_weight_[l];
     lights[l] = {};
   }
   first_.back() = cells_.size();
+  columns_.resize(cells_.size());
+  tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, emitters.count()),
+                    [&](const tbb::blocked_range<std::uint32_t>& range) {
+                      for (std::uint32_t l = range.begin(); l != range.end(); ++l) {
+                        const std::size_t n = first_[l + 1] - first_[l];
+                        if (n > 0 && light_weight_[l] > 0.0)
+                          alias::build(std::span(weights_).subspan(first_[l], n),
+                                       std::span(columns_).subspan(first_[l], n));
+                      }
+                    });
 }
 
-double PieceTable::weight(std::size_t piece) const {
-  const std::size_t first = first_[cells_[piece].light];
-  return piece == first ? running_[piece] : running_[piece] - running_[piece - 1];
-}
-
-double PieceTable::light_weight(std::uint32_t light) const {
-  return first_[light + 1] > first_[light] ? running_[first_[light + 1] - 1] : 0.0;
-}
-
-PieceTable::Pick PieceTable::pick_in_light(std::uint32_t light, double u) const {
-  const auto begin = running_.begin() + std::ptrdiff_t(first_[light]);
-  const auto end = running_.begin() + std::ptrdiff_t(first_[light + 1]);
-  const double target = u * *(end - 1);
-  // The first piece whose running weight exceeds the target: pieces of zero weight never are.
-  const auto it = std::min(std::upper_bound(begin, end, target), end - 1);
-  const std::size_t piece = std::size_t(it - running_.begin());
-  const double below = it == begin ? 0.0 : *(it - 1);
-  const double rest = std::clamp((target - below) / (*it - below), 0.0, 0x1.fffffffffffffp-1);
-  return {piece, rest};
+PieceTable::Pick PieceTable::pick_in_light(std::uint32_t light, std::uint64_t word) const {
+  const std::size_t first = first_[light];
+  const alias::Pick pick = alias::sample(std::span(columns_).subspan(first, first_[light + 1] - first), word);
+  return {first + pick.index, pick.u};
 }
 
 lightsampler::Barycentrics PieceTable::point(std::size_t piece, float u_fan, float u0, float u1) const {
   const Cell& c = cells_[piece];
   // The same cut as when the table was built: the cell's piece exists.
-  const std::optional<lightsampler::TexelPiece> p = emitters_.sampler().texel_piece(c.light, c.x, c.y);
-  return lightsampler::uniform_point(*p, u_fan, u0, u1);
+  return *emitters_.sampler().texel_piece_point(c.light, c.x, c.y, u_fan, u0, u1);
 }
 
 std::size_t PieceTable::bytes() const {
-  return cells_.capacity() * sizeof(Cell) + running_.capacity() * sizeof(double) +
-         first_.capacity() * sizeof(std::size_t);
+  return cells_.capacity() * sizeof(Cell) + weights_.capacity() * sizeof(double) +
+         columns_.capacity() * sizeof(alias::Column) + first_.capacity() * sizeof(std::size_t) +
+         light_weight_.capacity() * sizeof(double);
 }
 
 }  // namespace tracer

@@ -18,12 +18,6 @@ namespace {
 /// float(u) below 1, for the uniforms that choices leave over.
 float below_one(double u) { return std::min(float(u), 0x1.fffffep-1f); }
 
-std::vector<double> piece_weights(const PieceTable& table) {
-  std::vector<double> weights(table.size());
-  for (std::size_t i = 0; i < table.size(); ++i) weights[i] = table.weight(i);
-  return weights;
-}
-
 class TexelStrategy : public LightStrategy {
  public:
   explicit TexelStrategy(const Emitters& emitters) : emitters_(emitters) {}
@@ -31,7 +25,7 @@ class TexelStrategy : public LightStrategy {
   std::string name() const override { return "texel"; }
 
   std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint&) const override {
-    const AliasTable::Pick pick = alias_.sample(std::uint64_t(random[0]) | std::uint64_t(random[1]) << 32);
+    const alias::Pick pick = alias_.sample(word64(random, 0));
     const std::uint32_t light = table_.light(pick.index);
     const lightsampler::Barycentrics b = table_.point(pick.index, below_one(pick.u),
                                                       lightsampler::uniform_float(random[2]),
@@ -58,7 +52,7 @@ class TexelStrategy : public LightStrategy {
   // Built in this order; the set-up time is what they took.
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   PieceTable table_{emitters_};
-  AliasTable alias_{piece_weights(table_)};
+  alias::Table alias_{table_.weights()};
   double build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
 };
 

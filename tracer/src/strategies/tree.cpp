@@ -38,11 +38,11 @@ class TreeStrategy : public LightStrategy {
 
   std::optional<LightSample> sample(const LightRandom& random,
                                     const ShadingPoint& at) const override {
-    const std::optional<LightTree::Pick> pick = tree_.pick(lightsampler::uniform_double(random[0]), at);
+    const std::optional<LightTree::Pick> pick = tree_.pick(uniform53(random, 0), at);
     if (!pick) return std::nullopt;
     const std::array<glm::vec3, 3> v = emitters_.vertices(pick->light);
     const double omega = spherical_solid_angle(v, at.position);
-    const float u1 = lightsampler::uniform_float(random[1]), u2 = lightsampler::uniform_float(random[2]);
+    const float u1 = lightsampler::uniform_float(random[2]), u2 = lightsampler::uniform_float(random[3]);
     const lightsampler::Barycentrics b = by_direction(omega) ? sample_spherical_triangle(v, at.position, u1, u2)
                                                              : lightsampler::triangle_map(u1, u2);
     const float density = pick->pmf * point_density(pick->light, b.b1, b.b2, at, omega);

@@ -26,13 +26,13 @@ class TreeTexelStrategy : public LightStrategy {
   std::string name() const override { return "tree-texel"; }
 
   std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
-    const std::optional<LightTree::Pick> pick = tree_.pick(lightsampler::uniform_double(random[0]), at);
+    const std::optional<LightTree::Pick> pick = tree_.pick(uniform53(random, 0), at);
     // With image-mean powers the tree may pick a light that emits nothing.
     if (!pick || !(table_.light_weight(pick->light) > 0.0)) return std::nullopt;
-    const PieceTable::Pick piece = table_.pick_in_light(pick->light, lightsampler::uniform_double(random[1]));
+    const PieceTable::Pick piece = table_.pick_in_light(pick->light, word64(random, 2));
     const lightsampler::Barycentrics b =
-        table_.point(piece.piece, std::min(float(piece.u), 0x1.fffffep-1f), lightsampler::uniform_float(random[2]),
-                     lightsampler::uniform_float(random[3]));
+        table_.point(piece.piece, std::min(float(piece.u), 0x1.fffffep-1f), lightsampler::uniform_float(random[4]),
+                     lightsampler::uniform_float(random[5]));
     // Rounding can put a point on its cell's edge into the neighbouring texel: its density is
     // what that texel reads, as pdf() gives it; one without density carries nothing.
     const float p = pick->pmf * density_in_light(pick->light, b.b1, b.b2);
