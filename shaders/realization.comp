@@ -54,6 +54,15 @@ uint first_position(uint64_t sample_index) {
   return first_above(p.cdf, sample_index, Uints(p.guide).v[b], Uints(p.guide).v[b + 1u]);
 }
 
+// The next processing index after `position` with slots below `hi`, or triangle_count: a binary
+// search past the triangles without slots (most of them when triangles outnumber samples), so
+// a chunk's walk takes at most kSegmentSlots steps.
+uint next_position(uint position, uint64_t hi) {
+  uint64_t end = cdf_at(p.cdf, position);
+  if (end >= hi || position + 1u >= p.triangle_count) return p.triangle_count;
+  return first_above(p.cdf, end, position + 1u, p.triangle_count - 1u);
+}
+
 void main() {
   Totals totals = Totals(p.totals);
   uint64_t n = totals.t.realized;
@@ -64,7 +73,7 @@ void main() {
   for (uint64_t c = uint64_t(gl_WorkGroupID.x) * uint64_t(gl_NumSubgroups) + uint64_t(gl_SubgroupID); c < chunks;
        c += stride) {
     uint64_t lo = c * uint64_t(kSegmentSlots), hi = min(lo + uint64_t(kSegmentSlots), n);
-    for (uint position = first_position(lo); position < p.triangle_count; ++position) {
+    for (uint position = first_position(lo); position < p.triangle_count; position = next_position(position, hi)) {
       uint64_t start = position > 0u ? cdf_at(p.cdf, position - 1u) : 0ul, end = cdf_at(p.cdf, position);
       if (start >= hi) break;
       uint64_t segment = start >= lo ? 0ul : (lo - start + uint64_t(kSegmentSlots) - 1ul) / uint64_t(kSegmentSlots);

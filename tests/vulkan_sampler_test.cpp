@@ -388,6 +388,19 @@ TEST_F(VulkanSampler, ExactDrawsOfLargeTrianglesAreTheCpus) {
   }
 }
 
+TEST_F(VulkanSampler, FewSamplesOverManyTrianglesAreTheCpus) {
+  // 200,000 triangles and 300 samples: a chunk of slots spans tens of thousands of triangles
+  // without any, which the walk must pass by search (llvmpipe ends loops after 65,535 steps,
+  // leaving slots unwritten).
+  const Mesh mesh = texel_aligned_quads(100000, 43);
+  const std::vector<Map> maps = {trs_test::random_map(16, 16, 0.0, 44)};
+  const FrameRequest request{.seed = 4, .target_count = 300, .scan = ScanOrder::ordered};
+  const Frame want = generate(*cpu(mesh, maps), request), got = generate(*gpu(mesh, maps), request);
+  ASSERT_TRUE(std::ranges::equal(got.counts.span(), want.counts.span()));
+  ASSERT_EQ(got.samples.size(), want.samples.size());
+  expect_same_samples_in_order(want, got);
+}
+
 TEST_F(VulkanSampler, WrapAndClampAgreeExactlyWithTheCpuFarBeyondTheUnitSquare) {
   // Texel addresses of cells down to -40 on maps 7 and 5 texels wide: every counting path reads
   // exactly the CPU's texels (D_T^max equal, N-bar_T equal up to float summation order), and

@@ -48,8 +48,10 @@ struct SegmentRun {
 /// range, so disjoint ranges that cover the output split realization into independent work.
 template <class F>
 void for_each_segment(std::span<const std::uint64_t> cdf, std::uint64_t lo, std::uint64_t hi, F&& f) {
-  std::size_t p = std::size_t(std::upper_bound(cdf.begin(), cdf.end(), lo) - cdf.begin());
-  for (; p < cdf.size(); ++p) {
+  // Triangle to triangle with slots by binary search, past those without (as the shader does).
+  for (auto it = std::upper_bound(cdf.begin(), cdf.end(), lo); it != cdf.end();
+       it = std::upper_bound(it + 1, cdf.end(), *it)) {
+    const std::size_t p = std::size_t(it - cdf.begin());
     const std::uint64_t start = p == 0 ? 0 : cdf[p - 1], end = cdf[p];
     if (start >= hi) break;
     std::uint64_t s = start >= lo ? 0 : (lo - start + kSegmentSlots - 1) / kSegmentSlots;
