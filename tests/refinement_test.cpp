@@ -150,6 +150,30 @@ TEST(Refinement, RaisesTheAcceptance) {
   EXPECT_GT(after, 0.3);
 }
 
+TEST(Refinement, SplitsAgainForAChangedMap) {
+  // A stroke that moves, as on an animated texture: after update_map the sampler draws what one
+  // built on the new map draws, sample for sample, and keeps the new stroke's acceptance.
+  const trs_test::Mesh mesh = trs_test::quad(2, 1, 0, 0, 1, 1);
+  const auto stroke = [](std::uint32_t row) {
+    trs_test::Map map{std::vector<float>(128 * 64, 0.0f), 128, 64};
+    for (std::uint32_t x = 10; x < 110; ++x) map.texels[row * 128 + x] = 1.0f;
+    return map;
+  };
+  const trs_test::Map first = stroke(20), moved = stroke(45);
+  const DensityMapView first_view = first.view(), moved_view = moved.view();
+  const Scenario s{"moving stroke", mesh, moved, 1e5, 7};
+  auto updated = refined_cpu_sampler(s, first_view, {.min_acceptance = 0.5f});
+  generate(*updated, s);
+  updated->update_map(0, moved_view);
+  const Frame got = generate(*updated, s), want = generate(*refined_cpu_sampler(s, moved_view, {.min_acceptance = 0.5f}), s);
+  ASSERT_EQ(got.sample_count, want.sample_count);
+  for (std::size_t i = 0; i < want.samples.size(); ++i) {
+    const Sample &a = got.samples[i], &b = want.samples[i];
+    ASSERT_TRUE(a.triangle == b.triangle && a.b1 == b.b1 && a.b2 == b.b2) << "sample " << i;
+  }
+  EXPECT_GT(double(got.sample_count) / double(got.candidates), 0.3);
+}
+
 TEST(Refinement, SamplesMatchTheDensity) {
   for (const Scenario& s : trs_test::scenarios()) {
     const DensityMapView view = s.map.view();

@@ -90,7 +90,7 @@ std::unique_ptr<Sampler> make_sampler(const MeshView& mesh, std::span<const Dens
                                       const SamplerOptions& options) {
   if (!(options.refinement.min_acceptance > 0.0f)) return make_backend(mesh, maps, options);
   return make_refined_sampler(mesh, maps, options.refinement,
-                              [&](const MeshView& parts, std::span<const DensityMapView> m) {
+                              [options](const MeshView& parts, std::span<const DensityMapView> m) {
                                 return make_backend(parts, m, options);
                               });
 }

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -29,20 +31,41 @@ void fold_to_parents(Buffer<T>& values, const RefinedMesh& refined, std::size_t 
   values.resize(triangles);
 }
 
+/// The caller's mesh, kept to refine it again when a map changes.
+struct OwnedMesh {
+  std::vector<float> positions, uvs;
+  std::vector<std::uint32_t> indices, triangle_maps;
+
+  explicit OwnedMesh(const MeshView& m)
+      : positions(m.positions.begin(), m.positions.end()),
+        uvs(m.uvs.begin(), m.uvs.end()),
+        indices(m.indices.begin(), m.indices.end()),
+        triangle_maps(m.triangle_maps.begin(), m.triangle_maps.end()) {}
+  MeshView view() const { return {positions, uvs, indices, triangle_maps}; }
+};
+
 class RefinedSampler final : public Sampler {
  public:
-  RefinedSampler(const MeshView& mesh, std::span<const DensityMapView> maps, RefinedMesh refined,
-                 const SamplerFactory& backend)
-      : input_(mesh, maps), refined_(std::move(refined)), parts_(backend(refined_.view(), maps)) {}
+  RefinedSampler(const MeshView& mesh, std::span<const DensityMapView> maps, const Refinement& refinement,
+                 SamplerFactory backend)
+      : input_(mesh, maps), mesh_(mesh), refinement_(refinement), backend_(std::move(backend)) {
+    refine(maps);
+  }
 
   Backend backend() const override { return parts_->backend(); }
   std::string device() const override { return parts_->device(); }
   std::uint64_t triangle_count() const override { return input_.triangles().size(); }
   std::size_t map_count() const override { return input_.maps().size(); }
 
+  // The parts were split for the old map's pattern: on the CPU the next frame splits the mesh
+  // again (milliseconds). A new Vulkan backend compiles its pipelines (a third of a second on
+  // lavapipe), so there the parts stay as the first maps split them and take the new map in place.
   void update_map(std::size_t index, const DensityMapView& map) override {
-    parts_->update_map(index, map);
     input_.update_map(index, map);
+    if (parts_->backend() == Backend::cpu)
+      stale_ = true;
+    else
+      parts_->update_map(index, map);
   }
 
   float density(std::uint32_t triangle, float b1, float b2) const override {
@@ -60,30 +83,66 @@ class RefinedSampler final : public Sampler {
   }
 
   void generate(const FrameRequest& request, Frame& frame) override {
-    parts_->generate(request, frame);
     const auto start = std::chrono::steady_clock::now();
+    if (stale_) refine_current_maps();
+    const double refine_ms = ms_since(start);
+    parts_->generate(request, frame);
+    if (!refined_) return add_refinement_pass(frame, refine_ms);
+    const auto back = std::chrono::steady_clock::now();
     if (request.realize && request.vulkan.read_back) {
       std::span<Sample> samples = frame.samples.span();
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 1 << 14),
                         [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t i = r.begin(); i < r.end(); ++i)
-                            samples[i] = refined_.to_parent(samples[i]);
+                            samples[i] = refined_->to_parent(samples[i]);
                         });
     }
     const std::size_t n = input_.triangles().size();
-    fold_to_parents(frame.expected_counts, refined_, n, [](double a, double b) { return a + b; });
-    fold_to_parents(frame.counts, refined_, n, [](std::uint64_t a, std::uint64_t b) { return a + b; });
-    fold_to_parents(frame.max_density, refined_, n, [](float a, float b) { return std::max(a, b); });
-    const double ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    fold_to_parents(frame.expected_counts, *refined_, n, [](double a, double b) { return a + b; });
+    fold_to_parents(frame.counts, *refined_, n, [](std::uint64_t a, std::uint64_t b) { return a + b; });
+    fold_to_parents(frame.max_density, *refined_, n, [](float a, float b) { return std::max(a, b); });
+    add_refinement_pass(frame, refine_ms + ms_since(back));
+  }
+
+ private:
+  static double ms_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  /// Splits the mesh for `maps` and builds the backend over the parts, or over the mesh itself
+  /// where nothing is worth splitting (then there is nothing to bring back).
+  void refine(std::span<const DensityMapView> maps) {
+    parts_.reset();  // the old backend's memory (a GPU's) before the new one's
+    RefinedMesh refined(mesh_.view(), maps, refinement_);
+    if (refined.levels() == 0) {
+      refined_.reset();
+      parts_ = backend_(mesh_.view(), maps);
+    } else {
+      refined_ = std::move(refined);
+      parts_ = backend_(refined_->view(), maps);
+    }
+    stale_ = false;
+  }
+
+  void refine_current_maps() {
+    std::vector<DensityMapView> maps;
+    for (const core::DensityMap& m : input_.maps()) maps.push_back({m.texels, m.width, m.height, m.addressing, m.scale});
+    refine(maps);
+  }
+
+  static void add_refinement_pass(Frame& frame, double ms) {
+    if (ms <= 0.0) return;
     frame.passes.push_back({Pass::refinement, ms});
     frame.total_ms += ms;
   }
 
- private:
   core::HostScene input_;
-  RefinedMesh refined_;
+  OwnedMesh mesh_;
+  Refinement refinement_;
+  SamplerFactory backend_;
+  std::optional<RefinedMesh> refined_;  ///< none: the backend samples the mesh itself
   std::unique_ptr<Sampler> parts_;
+  bool stale_ = false;
 };
 
 }  // namespace
@@ -91,11 +150,8 @@ class RefinedSampler final : public Sampler {
 std::unique_ptr<Sampler> make_refined_sampler(const MeshView& mesh,
                                               std::span<const DensityMapView> maps,
                                               const Refinement& refinement,
-                                              const SamplerFactory& backend) {
-  RefinedMesh refined(mesh, maps, refinement);
-  // Nothing worth splitting: the backend over the mesh itself, with nothing to bring back.
-  if (refined.levels() == 0) return backend(mesh, maps);
-  return std::make_unique<RefinedSampler>(mesh, maps, std::move(refined), backend);
+                                              SamplerFactory backend) {
+  return std::make_unique<RefinedSampler>(mesh, maps, refinement, std::move(backend));
 }
 
 }  // namespace lightsampler

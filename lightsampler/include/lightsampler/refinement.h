@@ -98,7 +98,9 @@ inline Sample RefinedMesh::to_parent(const Sample& s) const {
   return {p.parent, b[0], b[1]};
 }
 
-/// Builds the backend that samples the parts (e.g. make_cpu_sampler over the given mesh).
+/// Builds the backend that samples the parts (e.g. make_cpu_sampler over the given mesh). The
+/// refined sampler keeps it, to build the backend again when the parts change: it must own what
+/// it captures.
 using SamplerFactory =
     std::function<std::unique_ptr<Sampler>(const MeshView&, std::span<const DensityMapView>)>;
 
@@ -106,10 +108,13 @@ using SamplerFactory =
 /// texel(), and the Frame's per-triangle expected_counts, counts and max_density refer to the
 /// caller's triangles; cdf and inverse_permutation to the parts, which are what is processed.
 /// Samples are brought back to the caller's triangles on the host, so the Vulkan backend must
-/// read them back (FrameRequest::vulkan.read_back).
+/// read them back (FrameRequest::vulkan.read_back). Where nothing is worth splitting the backend
+/// samples the caller's mesh itself. After update_map, on the CPU backend, the next frame splits
+/// the mesh again for the maps as they are (an animated texture's parts follow its pattern), and
+/// its `refinement` pass includes that time; the Vulkan backend keeps the parts of the first maps.
 std::unique_ptr<Sampler> make_refined_sampler(const MeshView& mesh,
                                               std::span<const DensityMapView> maps,
                                               const Refinement& refinement,
-                                              const SamplerFactory& backend);
+                                              SamplerFactory backend);
 
 }  // namespace lightsampler
