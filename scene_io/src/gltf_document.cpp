@@ -1,12 +1,16 @@
 #include "scene_io/gltf_document.h"
 
+#include <algorithm>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
 #include <utility>
+
+#include <nlohmann/json.hpp>
 
 #include "scene_io/file_error.h"
 
@@ -90,6 +94,7 @@ Document::Document(std::filesystem::path file) : file_(std::move(file)) {
                       ? loader.LoadBinaryFromFile(&model_, &error, &warning, file_.string())
                       : loader.LoadASCIIFromFile(&model_, &error, &warning, file_.string());
   if (!ok) fail("malformed glTF: " + one_line(error.empty() ? warning : error));
+  read_pointer_channels();
   for (const std::string& extension : model_.extensionsRequired) {
     if (extension == "KHR_draco_mesh_compression" || extension == "EXT_meshopt_compression" ||
         extension == "KHR_mesh_quantization") {
@@ -99,6 +104,50 @@ Document::Document(std::filesystem::path file) : file_(std::move(file)) {
 }
 
 void Document::fail(const std::string& problem) const { throw FileError(file_, problem); }
+
+void Document::read_pointer_channels() {
+  const bool used = std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(),
+                              "KHR_animation_pointer") != model_.extensionsUsed.end();
+  if (!used) return;
+  std::ifstream in(file_, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (has_binary_magic(file_)) {
+    // A .glb's first chunk is its JSON: header 12 bytes, then chunk length and type (8 bytes).
+    if (text.size() < 20) fail("malformed glTF: truncated binary header");
+    text = text.substr(20, load<std::uint32_t>(reinterpret_cast<const unsigned char*>(text.data()) + 12));
+  }
+  const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
+  if (json.is_discarded() || !json.contains("animations")) return;  // tinygltf parsed it: no animations
+  const nlohmann::json& animations = json["animations"];
+  for (std::size_t a = 0; a < animations.size(); ++a) {
+    const nlohmann::json& channels = animations[a].value("channels", nlohmann::json::array());
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      const nlohmann::json pointer = channels[c].value("target", nlohmann::json::object())
+                                         .value("extensions", nlohmann::json::object())
+                                         .value("KHR_animation_pointer", nlohmann::json::object())
+                                         .value("pointer", nlohmann::json());
+      if (!pointer.is_string()) continue;
+      const std::string what = "animation " + std::to_string(a) + " channel " + std::to_string(c);
+      const nlohmann::json& sampler = channels[c].value("sampler", nlohmann::json());
+      if (!sampler.is_number_integer() || sampler.get<std::int64_t>() < 0 ||
+          std::size_t(sampler.get<std::int64_t>()) >= model_.animations[a].samplers.size())
+        fail(what + ": its sampler does not exist");
+      pointer_channels_.push_back({int(a), int(sampler.get<std::int64_t>()), pointer.get<std::string>()});
+    }
+  }
+}
+
+std::vector<float> Document::floats(int accessor, int components, const std::string& what) const {
+  const Accessor data = locate(accessor, what);
+  if (data.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT || data.components != components)
+    fail(what + ": accessor " + std::to_string(accessor) + " must hold " + std::to_string(components) +
+         " float" + (components > 1 ? "s" : "") + " per element");
+  std::vector<float> values;
+  values.reserve(data.count * std::size_t(components));
+  for (std::size_t i = 0; i < data.count; ++i)
+    for (int k = 0; k < components; ++k) values.push_back(load<float>(data.element(i) + 4 * k));
+  return values;
+}
 
 std::filesystem::path Document::resolve_uri(const std::string& uri) const {
   std::string decoded;

@@ -86,6 +86,11 @@ Image read_exr(const std::filesystem::path& file) {
 
 Image read_image(const std::filesystem::path& file) { return to_rgb(decode_image(file)); }
 
+std::pair<std::uint32_t, std::uint32_t> image_size(const std::filesystem::path& file) {
+  const image_codec::Decoder decoder = open_image(file);
+  return {std::uint32_t(decoder.header().width), std::uint32_t(decoder.header().height)};
+}
+
 Image read_image(std::span<const unsigned char> bytes, const std::string& format,
                  const std::filesystem::path& file, const std::string& what) {
   const std::string context = what + ": ";

@@ -69,6 +69,20 @@ class Document {
   /// their vertices with 32 bits, and a file with more fails here rather than wrapping around.
   std::uint32_t vertex_base(std::size_t existing, std::size_t added) const;
 
+  /// An animation channel that targets a property by JSON pointer (KHR_animation_pointer), such
+  /// as "/materials/0/emissiveFactor". tinygltf reads only channels that target nodes, so these
+  /// are read from the document's JSON here.
+  struct PointerChannel {
+    int animation;
+    int sampler;  ///< of model().animations[animation]
+    std::string pointer;
+  };
+  const std::vector<PointerChannel>& pointer_channels() const { return pointer_channels_; }
+
+  /// A float SCALAR, VEC2, VEC3 or VEC4 accessor's values, `components` per element (an
+  /// animation sampler's input or output): the accessor must have that many.
+  std::vector<float> floats(int accessor, int components, const std::string& what) const;
+
  private:
   struct Accessor;
   Accessor locate(int index, const std::string& what) const;
@@ -81,8 +95,11 @@ class Document {
                                              std::size_t vertex_count,
                                              const std::string& what) const;
 
+  void read_pointer_channels();
+
   std::filesystem::path file_;
   tinygltf::Model model_;
+  std::vector<PointerChannel> pointer_channels_;
 };
 
 }  // namespace trs::gltf

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace trs {
@@ -43,6 +44,10 @@ Image read_exr(const std::filesystem::path& file);
 
 /// Reads any image the codec decodes: the first subimage's R, G, B (grey repeated).
 Image read_image(const std::filesystem::path& file);
+
+/// The width and height of an image file, from its header alone. Throws FileError naming
+/// `file`, as read_image.
+std::pair<std::uint32_t, std::uint32_t> image_size(const std::filesystem::path& file);
 
 /// The same for an image file's bytes embedded in `file` (a glTF buffer or data URI); `format`
 /// is an extension ("png", "jpeg") and `what` names the image in messages. Formats that the
