@@ -206,11 +206,13 @@ def cylinder(base, radius, height, segments=16):
 
 class Texture:
     """An image given by pixel(x, y) -> linear RGB in [0, 1], x right and y down; kept and written
-    as 8-bit sRGB."""
+    as 8-bit sRGB. With `frames` (Textures) it plays them, frame k written to `frames_pattern % k`
+    (a path relative to the scene's folder), and this image is their poster."""
 
-    def __init__(self, name, width, height, pixel):
+    def __init__(self, name, width, height, pixel, frames=None, frames_pattern=None):
         self.name, self.width, self.height = name, width, height
         self.rows = [[encode(pixel(x, y)) for x in range(width)] for y in range(height)]
+        self.frames, self.frames_pattern = frames or [], frames_pattern
 
     def nonzero_fraction(self):
         """Texels with any non-zero channel: where a light sampler can land."""
@@ -219,6 +221,10 @@ class Texture:
 
     def write(self, folder):
         write_png(folder / self.name, self.width, self.height, self.rows)
+        for k, frame in enumerate(self.frames):
+            path = folder / (self.frames_pattern % k)
+            path.parent.mkdir(parents=True, exist_ok=True)
+            write_png(path, frame.width, frame.height, frame.rows)
 
 
 def encode(rgb):
@@ -253,8 +259,9 @@ class Gltf:
     def _view(self, data, target):
         """A buffer view of `data`, started on a 4-byte boundary as float and uint32 need."""
         self.blob += b"\0" * (-len(self.blob) % 4)
-        view = {"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(data),
-                "target": target}
+        view = {"buffer": 0, "byteOffset": len(self.blob), "byteLength": len(data)}
+        if target is not None:  # vertex and index data; an animation's is neither
+            view["target"] = target
         self.blob += data
         return self._append("bufferViews", view)
 
@@ -268,6 +275,27 @@ class Gltf:
             accessor["min"] = [short_f32(min(v[k] for v in values)) for k in range(3)]
             accessor["max"] = [short_f32(max(v[k] for v in values)) for k in range(3)]
         return self._append("accessors", accessor)
+
+    def _scalars(self, values, bounds=False):
+        """A float SCALAR accessor; an animation's input (bounds=True) must state its min and max."""
+        data = struct.pack(f"<{len(values)}f", *values)
+        accessor = {"bufferView": self._view(data, None), "componentType": FLOAT, "count": len(values),
+                    "type": "SCALAR"}
+        if bounds:
+            accessor["min"], accessor["max"] = [short_f32(min(values))], [short_f32(max(values))]
+        return self._append("accessors", accessor)
+
+    def animate_emissive_strength(self, material, times, values, interpolation="STEP"):
+        """Keys the material's KHR_materials_emissive_strength over time (KHR_animation_pointer)."""
+        if "KHR_animation_pointer" not in self.doc["extensionsUsed"]:
+            self.doc["extensionsUsed"].append("KHR_animation_pointer")
+        pointer = f"/materials/{material}/extensions/KHR_materials_emissive_strength/emissiveStrength"
+        self.doc.setdefault("animations", []).append({
+            "name": self.doc["materials"][material]["name"],
+            "channels": [{"sampler": 0, "target": {
+                "path": "pointer", "extensions": {"KHR_animation_pointer": {"pointer": pointer}}}}],
+            "samplers": [{"input": self._scalars(times, bounds=True), "output": self._scalars(values),
+                          "interpolation": interpolation}]})
 
     def _indices(self, values):
         data = struct.pack(f"<{len(values)}I", *values)
@@ -289,7 +317,10 @@ class Gltf:
                                          "wrapS": CLAMP_TO_EDGE, "wrapT": CLAMP_TO_EDGE})
         if texture not in self.textures:
             self.textures.append(texture)
-            image = self._append("images", {"uri": texture.name})
+            image = {"uri": texture.name}
+            if texture.frames:  # the renderer plays the sequence; other viewers show the poster
+                image["extras"] = {"frames": texture.frames_pattern}
+            image = self._append("images", image)
             self._append("textures", {"sampler": 0, "source": image})
         return self.textures.index(texture)
 
@@ -939,8 +970,70 @@ def night_street():
     return gltf, "Night street", 16
 
 
+# --- scene 7: video-wall ------------------------------------------------------------------------
+
+CLIP_FRAMES, CLIP_WIDTH, CLIP_HEIGHT = 48, 320, 180  # two seconds at 24 frames per second
+
+
+def clip_frame(k, banner, banner_width):
+    """Frame k of the wall's clip: on a dark ground, a banner of neon words scrolling right to
+    left, two bright discs on Lissajous paths and a bar sweeping down: high contrast, moving."""
+    t = k / CLIP_FRAMES
+    shift = int(t * banner_width)
+    discs = [((0.5 + 0.4 * math.sin(2 * math.pi * (t + p)), 0.3 + 0.2 * math.sin(4 * math.pi * (t + p) + 1.0)),
+              0.12, colour) for p, colour in ((0.0, (1.0, 0.3, 0.1)), (0.3, (0.2, 0.6, 1.0)))]
+    bar = (t * 1.3) % 1.3 - 0.15
+
+    def pixel(x, y):
+        u, v = (x + 0.5) / CLIP_WIDTH, (y + 0.5) / CLIP_HEIGHT
+        rgb = (0.002, 0.002, 0.005)  # an LED wall's black is not quite black
+        if abs(v - bar) < 0.03:
+            rgb = (0.6, 0.6, 0.7)
+        for (cu, cv), r, colour in discs:
+            if math.hypot((u - cu) * CLIP_WIDTH / CLIP_HEIGHT, v - cv) < r:
+                rgb = colour
+        if 0.62 <= v < 0.92:  # the banner's band
+            lit = banner[int((v - 0.62) / 0.30 * len(banner))][(x + shift) % banner_width]
+            rgb = add(rgb, lit)
+        return tuple(min(c, 1.0) for c in rgb)
+    return pixel
+
+
+def video_wall():
+    """An LED wall playing a two-second clip lights a room with a glossy floor, beside a small
+    "on air" sign that blinks: emission that changes every frame."""
+    gltf = Gltf("video-wall")
+    gltf.mesh("room", room(-3.5, 3.5, 3.2, -2.5, 5.0), gltf.material("plaster", (0.6,) * 3))
+    gltf.mesh("floor", box((0.0, -0.01, 1.0), (7.0, 0.02, 7.0)),
+              gltf.material("polished concrete", (0.35, 0.35, 0.36), 0.0, 0.15))
+    gltf.mesh("ball", sphere((-1.3, 0.45, 0.8), 0.45), gltf.material("white plastic", (0.8, 0.8, 0.8), 0.0, 0.3))
+    gltf.mesh("block", box((1.1, 0.35, 0.3), (0.7, 0.7, 0.7), 0.5), gltf.material("clay", (0.6, 0.45, 0.35)))
+    gltf.mesh("post", cylinder((0.2, 0.0, 1.6), 0.18, 1.2), gltf.material("brushed steel", (0.8, 0.8, 0.82), 1.0, 0.35))
+    # The banner's words, painted once and scrolled: 3 words of neon strokes, 960 x 54 texels.
+    banner_width, banner_height = 960, 54
+    words = [neon_pixel(word_strokes(word, 320, banner_height, NEON_COLOURS[i]))
+             for i, word in enumerate(["LIVE", "NEWS", "TRS"])]
+    banner = [[words[x // 320](x % 320, y) for x in range(banner_width)] for y in range(banner_height)]
+    frames = [Texture(f"frame {k}", CLIP_WIDTH, CLIP_HEIGHT, clip_frame(k, banner, banner_width))
+              for k in range(CLIP_FRAMES)]
+    clip = Texture("video-wall.png", CLIP_WIDTH, CLIP_HEIGHT, clip_frame(0, banner, banner_width), frames,
+                   "clip/wall.%04d.png")
+    wall = Mesh()  # 4.8 x 2.7 m on the back wall, 2 triangles, facing the room (+z)
+    wall.add_quad((-2.4, 2.95, -2.49), axis(0, 4.8), axis(1, -2.7), (0, 0, 1))
+    gltf.mesh("LED wall", wall, gltf.emissive_material("LED wall", clip, 8.0))
+    sign_texture = Texture("on-air.png", 128, 32, neon_pixel(word_strokes("ONAIR", 128, 32, (1.0, 0.1, 0.1))))
+    sign = Mesh()  # on the right-hand wall, facing the room (-x)
+    sign.add_quad((3.49, 2.9, -1.6), axis(2, 1.2), axis(1, -0.3), (-1, 0, 0))
+    on_air = gltf.emissive_material("on air", sign_texture, 40.0)
+    gltf.mesh("on air sign", sign, on_air)
+    gltf.animate_emissive_strength(on_air, [0.0, 0.5, 1.0, 1.5], [40.0, 0.0, 40.0, 0.0])
+    gltf.camera((2.4, 1.6, 4.6), (-0.5, 1.2, -1.5), 0.85)
+    return gltf, "Video wall", 16
+
+
 SCENES = {"neon-sign": neon_sign, "gradient-screen": gradient_screen, "mosaic": mosaic,
-          "tile-emitter": tile_emitter, "lantern": lantern, "night-street": night_street}
+          "tile-emitter": tile_emitter, "lantern": lantern, "night-street": night_street,
+          "video-wall": video_wall}
 
 
 def main():

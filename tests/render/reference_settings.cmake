@@ -2,4 +2,4 @@
 # paths, few lights per frame (the estimator is unbiased at any count), two threads.
 set(TRS_REFERENCE_SETTINGS --width 64 --height 36 --max-depth 3 --lights 20000 --threads 2)
 set(TRS_REFERENCE_SPP 1024)
-set(TRS_REFERENCE_SCENES neon-sign gradient-screen mosaic tile-emitter lantern night-street)
+set(TRS_REFERENCE_SCENES neon-sign gradient-screen mosaic tile-emitter lantern night-street video-wall)

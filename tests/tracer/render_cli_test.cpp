@@ -14,11 +14,13 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "support/gltf_quad.h"
+#include "support/image_files.h"
 #include "scene_io/image_output.h"
 #include "support/subprocess.h"
 
@@ -30,6 +32,7 @@ using trs_test::RunResult;
 using trs_test::write_file;
 
 const fs::path kScene = fs::path(TRS_SCENES_DIR) / "neon-sign" / "neon-sign.gltf";
+const fs::path kAnimated = fs::path(TRS_SCENES_DIR) / "video-wall" / "video-wall.gltf";
 const std::vector<std::string> kStrategies = {"uniform", "power", "trs", "ris", "tree", "texel", "tree-texel"};
 
 nlohmann::json read_json(const fs::path& file) { return nlohmann::json::parse(read_file(file)); }
@@ -412,7 +415,140 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
     EXPECT_EQ(result.status, 2) << result.err;
     EXPECT_NE(result.err.find("trs-render: error: "), std::string::npos) << result.err;
   }
+  // --frames: a range A:B, outputs that are frame patterns, --plan and --resume with it.
+  for (const std::vector<std::string>& args :
+       {tiny(kAnimated, {"--frames", "0:2", "--out", file("out.exr").string()}),
+        tiny(kAnimated, {"--frames", "0:2", "--out", file("out.%04d.exr").string(), "--stats", file("s.json").string()}),
+        tiny(kAnimated, {"--frames", "0:2", "--out", file("out.%d%d.exr").string()}),
+        tiny(kAnimated, {"--frames", "2:1", "--out", file("out.%04d.exr").string()}),
+        tiny(kAnimated, {"--frames", "two", "--out", file("out.%04d.exr").string()}),
+        tiny(kAnimated, {"--plan", "--out", file("out.exr").string()}),
+        tiny(kAnimated, {"--resume", "--out", file("out.exr").string()})}) {
+    const RunResult result = run(args);
+    EXPECT_EQ(result.status, 2) << result.err;
+    EXPECT_NE(result.err.find("trs-render: error: "), std::string::npos) << result.err;
+  }
   EXPECT_EQ(listing(), before);
+}
+
+// 5b. Animation: a frame range, an image and statistics per frame.
+TEST_F(RenderCliTest, FramesRenderAnImageAndStatisticsEach) {
+  const RunResult result =
+      run(tiny(kAnimated, {"--frames", "3:5", "--fps", "12", "--out", file("f.%04d.exr").string(), "--stats",
+                           file("f.%04d.json").string(), "--preview", file("f.%02d.png").string()}));
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(listing(), (std::set<std::string>{"f.0003.exr", "f.0004.exr", "f.0005.exr", "f.0003.json", "f.0004.json",
+                                              "f.0005.json", "f.03.png", "f.04.png", "f.05.png"}));
+  for (int f = 3; f <= 5; ++f) {
+    SCOPED_TRACE(f);
+    read_render(file("f.000" + std::to_string(f) + ".exr"), 16, 9);
+    const nlohmann::json stats = read_json(file("f.000" + std::to_string(f) + ".json"));
+    EXPECT_EQ(stats["frame"], f);
+    EXPECT_DOUBLE_EQ(stats["animation_seconds"].get<double>(), f / 12.0);
+    EXPECT_EQ(stats["settings"]["frames"], "3:5");
+    EXPECT_EQ(stats["settings"]["fps"], 12.0);
+    EXPECT_EQ(stats["settings"]["out"], file("f.000" + std::to_string(f) + ".exr").string());
+    for (const char* part : {"decode", "upload", "counting", "strategy"})
+      EXPECT_GE(stats["emission_update_ms"][part].get<double>(), 0.0) << part;
+  }
+  // The clip's next image is decoded for every frame after the first.
+  EXPECT_GT(read_json(file("f.0004.json"))["emission_update_ms"]["decode"].get<double>(), 0.0);
+}
+
+// A frame renders the same whatever range it is rendered in, so chunks of a plan make the same
+// images as one run: frame 4 alone is frame 4 of 3:4, for every strategy. (On the CPU backend:
+// the Vulkan one keeps the refinement of the range's first frame.)
+TEST_F(RenderCliTest, AFrameRendersTheSameInAnyRange) {
+  for (const std::string& strategy : kStrategies) {
+    SCOPED_TRACE(strategy);
+    for (const char* range : {"3:4", "4:4"})
+      ASSERT_EQ(run(tiny(kAnimated, {"--strategy", strategy, "--backend", "cpu", "--frames", range, "--out",
+                                     file(range[0] == '3' ? "seq.%d.exr" : "one.%d.exr").string()})).status, 0);
+    const auto seq3 = read_render(file("seq.3.exr"), 16, 9), seq4 = read_render(file("seq.4.exr"), 16, 9),
+               one4 = read_render(file("one.4.exr"), 16, 9);
+    ASSERT_TRUE(seq3 && seq4 && one4);
+    EXPECT_EQ(seq4->rgb, one4->rgb);
+    EXPECT_NE(seq3->rgb, seq4->rgb);
+  }
+}
+
+TEST_F(RenderCliTest, ResumeRendersOnlyTheFramesNotAllThere) {
+  ASSERT_EQ(run(tiny(kAnimated, {"--frames", "0:2", "--out", file("r.%d.exr").string(), "--stats",
+                                 file("r.%d.json").string()})).status, 0);
+  fs::remove(file("r.1.json"));  // frame 1 is missing an output; frame 0 is whole
+  write_text("r.0.exr", "kept");
+  const RunResult result = run(tiny(kAnimated, {"--frames", "0:3", "--resume", "--out", file("r.%d.exr").string(),
+                                                "--stats", file("r.%d.json").string()}));
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(read_file(file("r.0.exr")), "kept");
+  for (int f = 1; f <= 3; ++f) {
+    read_render(file("r." + std::to_string(f) + ".exr"), 16, 9);
+    EXPECT_EQ(read_json(file("r." + std::to_string(f) + ".json"))["frame"], f);
+  }
+}
+
+TEST_F(RenderCliTest, PlanPrintsACommandPerChunkAndRendersNothing) {
+  const std::set<std::string> before = listing();
+  const RunResult result = run(tiny(kAnimated, {"--frames", "0:4", "--plan", "--chunk", "2", "--out",
+                                                file("p.%04d.exr").string()}));
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(listing(), before);
+  std::vector<std::string> lines;
+  std::istringstream in(result.out);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 3u) << result.out;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string range = std::to_string(2 * i) + ":" + std::to_string(std::min<std::size_t>(2 * i + 1, 4));
+    EXPECT_NE(lines[i].find("--frames " + range), std::string::npos) << lines[i];
+    EXPECT_NE(lines[i].find(file("p.%04d.exr").string()), std::string::npos) << lines[i];
+    EXPECT_EQ(lines[i].find("--plan"), std::string::npos) << lines[i];
+  }
+}
+
+// Each frame of a two-image sequence is the still render of that frame's image: bit for bit,
+// frame f of a scene without animation rendered with the same seed stream; frame 0 is also the
+// plain still render.
+TEST_F(RenderCliTest, EachFrameIsTheStillRenderOfItsImage) {
+  std::vector<std::uint16_t> bright(8 * 8 * 3, 230), pattern(8 * 8 * 3, 0);
+  for (std::size_t i = 0; i < pattern.size(); i += 7) pattern[i] = 255;
+  write_file(file("clip.0.png"), trs_test::png_file(8, 8, 3, 8, bright));
+  write_file(file("clip.1.png"), trs_test::png_file(8, 8, 3, 8, pattern));
+  const auto scene = [&](const std::string& name, const std::string& image) {
+    return write_quad_scene(
+        name, R"({"name": "screen", "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0}})",
+        R"("textures": [{"source": 0}], "images": [)" + image + "],");
+  };
+  const fs::path animated = scene("clip.gltf", R"({"uri": "clip.0.png", "extras": {"frames": "clip.%d.png"}})");
+  for (const std::string& strategy : kStrategies) {
+    SCOPED_TRACE(strategy);
+    const auto render = [&](const fs::path& gltf, const std::string& frames, const std::string& out) {
+      std::vector<std::string> args = tiny(gltf, {"--strategy", strategy, "--backend", "cpu", "--out", file(out).string()});
+      if (!frames.empty()) args.insert(args.end(), {"--frames", frames});
+      const RunResult result = run(args);
+      EXPECT_EQ(result.status, 0) << result.err;
+      return read_render(file(frames.empty() ? out : std::string(out).replace(out.find("%d"), 2, frames.substr(0, 1))), 16, 9);
+    };
+    const auto frame0 = render(animated, "0:1", "anim.%d.exr");
+    const auto frame1 = read_render(file("anim.1.exr"), 16, 9);
+    const auto still0 = render(scene("still0.gltf", R"({"uri": "clip.0.png"})"), "", "still0.exr");
+    const auto still1 = render(scene("still1.gltf", R"({"uri": "clip.1.png"})"), "1:1", "still1.%d.exr");
+    ASSERT_TRUE(frame0 && frame1 && still0 && still1);
+    EXPECT_EQ(frame0->rgb, still0->rgb);
+    EXPECT_EQ(frame1->rgb, still1->rgb);
+    EXPECT_NE(frame0->rgb, frame1->rgb);
+  }
+}
+
+// A sequence with a frame that is not an image: the error names that file, and nothing is written.
+TEST_F(RenderCliTest, ASequenceFrameThatIsNotAnImageIsNamed) {
+  const std::vector<std::uint16_t> texels(4 * 4 * 3, 200);
+  for (const char* name : {"poster.png", "clip.0.png"}) write_file(file(name), trs_test::png_file(4, 4, 3, 8, texels));
+  write_text("clip.1.png", "not a png");
+  const fs::path scene = write_quad_scene(
+      "clip.gltf", R"({"name": "screen", "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0}})",
+      R"("textures": [{"source": 0}], "images": [{"uri": "poster.png", "extras": {"frames": "clip.%d.png"}}],)");
+  std::vector<std::string> args = tiny(scene, {"--frames", "0:1", "--out", file("clip.%d.exr").string()});
+  expect_failure_naming(args, file("clip.1.png"));
 }
 
 enum class SigintState { default_action, caught, exited };

@@ -13,6 +13,7 @@
 
 #include "common/build_commit.h"
 #include "common/cli_options.h"
+#include "scene_io/frame_pattern.h"
 
 namespace trs {
 namespace {
@@ -31,6 +32,20 @@ const std::map<std::string, tracer::TreeImportance> kTreeImportances = {
 
 const std::map<std::string, tracer::TreePower> kTreePowers = {
     {"exact", tracer::TreePower::exact}, {"image-mean", tracer::TreePower::image_mean}};
+
+/// "A:B" with 0 <= A <= B.
+std::optional<FrameRange> parse_frames(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  if (colon == std::string::npos) return std::nullopt;
+  FrameRange range;
+  for (auto [part, value] : {std::pair{text.substr(0, colon), &range.first}, std::pair{text.substr(colon + 1), &range.last}}) {
+    if (part.empty() || part.size() > 12 || !std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      return std::nullopt;
+    *value = std::stoll(part);
+  }
+  if (range.first > range.last) return std::nullopt;
+  return range;
+}
 
 std::vector<std::string> resamplable_names() {
   std::vector<std::string> result;
@@ -131,6 +146,20 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   add_refine_option(app, r.sampler.refinement);
   app.add_option("--device", r.sampler.vulkan.device,
                  "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE)");
+  std::string frames;
+  std::int64_t chunk = 1;
+  bool plan = false;
+  app.add_option("--frames", frames,
+                 "render animation frames A to B (A:B, inclusive), an image each: --out and the other "
+                 "outputs are then frame patterns (out.%04d.exr), --spp and --time apply to each frame");
+  app.add_option("--fps", r.fps, "animation frames per second (frame f is f / fps seconds in)")
+      ->check(CLI::PositiveNumber & kFiniteNonNegative)
+      ->capture_default_str();
+  app.add_flag("--resume", options.resume, "--frames: skip the frames whose outputs are all there");
+  app.add_flag("--plan", plan,
+               "--frames: print one trs-render command per chunk of frames (for GNU parallel or a Slurm "
+               "array) and render nothing");
+  app.add_option("--chunk", chunk, "--plan: frames per command")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_option("--stats", stats, "JSON summary of the run");
   app.add_option("--preview", preview, "8-bit sRGB PNG preview of the image");
   app.add_option("--variance", variance,
@@ -187,6 +216,22 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
       return kUsageError;
     }
   }
+  if (!frames.empty()) {
+    const auto range = parse_frames(frames);
+    if (!range) {
+      std::cerr << "trs-render: error: --frames takes A:B, frames 0 <= A <= B (" << frames << ")\n";
+      return kUsageError;
+    }
+    options.frames = range;
+  }
+  for (const char* option : {"--resume", "--plan", "--chunk"}) {
+    if (app.count(option) > 0 && !options.frames) {
+      std::cerr << "trs-render: error: " << option << " belongs to --frames\n";
+      return kUsageError;
+    }
+  }
+  if (plan) options.plan_chunk = chunk;
+  options.arguments.assign(argv, argv + argc);
   r.strategy.lights = lights == "auto" ? tracer::auto_lights(r.width, r.height, r.max_depth) : std::stod(lights);
   r.sampler.backend = kBackends.at(backend);
   r.strategy.seed = r.seed;
@@ -196,7 +241,27 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   if (!variance.empty()) options.variance = variance;
   if (!emitter_mask.empty()) options.emitter_mask = emitter_mask;
   options.progress = !quiet;
+  if (options.frames) {
+    for (const std::filesystem::path& path : outputs(options)) {
+      if (FramePattern::valid(path.filename().string())) continue;
+      std::cerr << "trs-render: error: with --frames, each output names its frame: " << path.string()
+                << " needs one integer conversion in its file name (out.%04d.exr)\n";
+      return kUsageError;
+    }
+  }
   return options;
+}
+
+std::filesystem::path output(const RenderOptions& options, const std::filesystem::path& path, std::int64_t frame) {
+  if (!options.frames) return path;
+  return path.parent_path() / FramePattern(path.filename().string()).format(frame);
+}
+
+std::vector<std::filesystem::path> outputs(const RenderOptions& options) {
+  std::vector<std::filesystem::path> paths = {options.out};
+  for (const auto* path : {&options.stats, &options.preview, &options.variance, &options.emitter_mask})
+    if (*path) paths.push_back(**path);
+  return paths;
 }
 
 }  // namespace trs

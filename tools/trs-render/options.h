@@ -1,16 +1,28 @@
 #pragma once
 // The command line of trs-render.
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <variant>
+#include <vector>
 
 #include "tracer/renderer.h"
 
 namespace trs {
 
+/// Animation frames first to last, inclusive.
+struct FrameRange {
+  std::int64_t first = 0;
+  std::int64_t last = 0;
+  std::int64_t count() const { return last - first + 1; }
+};
+
 struct RenderOptions {
   std::filesystem::path scene;
+  /// With `frames`, every output path is a frame pattern (scene_io/frame_pattern.h) that output()
+  /// formats.
   std::filesystem::path out;
   std::optional<std::filesystem::path> stats;
   std::optional<std::filesystem::path> preview;
@@ -21,7 +33,21 @@ struct RenderOptions {
   float exposure = 0.0f;
   bool progress = true;  ///< a progress bar when standard error is a terminal
   tracer::RenderSettings render;
+  /// A sequence: one image per animation frame (each with its own seeds; --spp and --time each).
+  std::optional<FrameRange> frames;
+  bool resume = false;  ///< skip the frames whose outputs are all written
+  /// --plan: print a command per chunk of this many frames instead of rendering.
+  std::optional<std::int64_t> plan_chunk;
+  std::vector<std::string> arguments;  ///< the command line, for --plan
 };
+
+/// An output's path for animation frame `frame`: the pattern formatted with a sequence, the path
+/// itself for a still.
+std::filesystem::path output(const RenderOptions& options, const std::filesystem::path& path,
+                             std::int64_t frame);
+
+/// Every output path that options ask for, `out` first.
+std::vector<std::filesystem::path> outputs(const RenderOptions& options);
 
 /// Exit status of a command line that is wrong (as opposed to inputs that are).
 inline constexpr int kUsageError = 2;

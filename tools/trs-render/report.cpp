@@ -105,8 +105,16 @@ double relative_variance(const tracer::RenderResult& result) {
   return sum / double(pixels);
 }
 
+namespace {
+
+nlohmann::json update_json(const tracer::EmissionUpdate& u) {
+  return {{"decode", u.decode_ms}, {"upload", u.upload_ms}, {"counting", u.counting_ms}, {"strategy", u.strategy_ms}};
+}
+
+}  // namespace
+
 nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResult& result,
-                          double wall_seconds) {
+                          double wall_seconds, const std::optional<SequenceFrame>& frame) {
   const tracer::RenderSettings& r = options.render;
   const SamplerTimes sampler = sampler_times(result);
   nlohmann::json ms = nlohmann::json::array();
@@ -117,7 +125,11 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
   return {
       {"settings",
        {{"scene", options.scene.string()},
-        {"out", options.out.string()},
+        {"out", output(options, options.out, frame ? frame->frame : 0).string()},
+        {"frames", options.frames ? nlohmann::json(std::to_string(options.frames->first) + ":" +
+                                                   std::to_string(options.frames->last))
+                                  : nlohmann::json()},
+        {"fps", r.fps},
         {"width", r.width},
         {"height", r.height},
         // The most frames (null: none, a time budget alone) and the time budget (null: none).
@@ -136,6 +148,9 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"refine", r.sampler.refinement.min_acceptance}}},
       {"frames", result.frames},
       {"interrupted", result.interrupted},
+      {"frame", frame ? nlohmann::json(frame->frame) : nlohmann::json()},
+      {"animation_seconds", frame ? nlohmann::json(frame->seconds) : nlohmann::json()},
+      {"emission_update_ms", frame ? update_json(frame->update) : nlohmann::json()},
       {"light_sampler", result.light_device},
       {"light_structure", light_structure(result.light_structure)},
       {"wall_seconds", wall_seconds},
@@ -158,12 +173,25 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
   };
 }
 
-void print_summary(std::ostream& out, const RenderOptions& options,
-                   const tracer::RenderResult& result, double wall_seconds) {
+void print_frame(std::ostream& out, const std::filesystem::path& image, const tracer::RenderResult& result,
+                 const SequenceFrame& frame, double wall_seconds) {
+  const tracer::EmissionUpdate& u = frame.update;
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "frame %lld: %s, %u spp, %.2f s; emission %.1f ms (decode %.1f, upload %.1f, counting %.1f, "
+                "strategy %.1f), light sampler %.2f ms per spp\n",
+                static_cast<long long>(frame.frame), image.string().c_str(), result.frames, wall_seconds,
+                u.decode_ms + u.upload_ms + u.counting_ms + u.strategy_ms, u.decode_ms, u.upload_ms, u.counting_ms,
+                u.strategy_ms, sampler_times(result).mean_ms);
+  out << line;
+}
+
+void print_summary(std::ostream& out, const std::filesystem::path& image, const tracer::RenderResult& result,
+                   double wall_seconds) {
   const SamplerTimes sampler = sampler_times(result);
   char line[256];
   std::snprintf(line, sizeof line, "%s: %u x %u, %u spp%s, strategy %s\n",
-                options.out.string().c_str(), result.width, result.height, result.frames,
+                image.string().c_str(), result.width, result.height, result.frames,
                 result.interrupted ? " (interrupted)" : "", result.strategy.c_str());
   out << line;
   std::snprintf(line, sizeof line,

@@ -32,10 +32,23 @@ class ProgressBar {
 /// 0.01, relMSE's usual guard against dark pixels): the noise of one sample per pixel.
 double relative_variance(const tracer::RenderResult& result);
 
-nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResult& result,
-                          double wall_seconds);
+/// One frame of a sequence: which, and what it took to change the emission to it.
+struct SequenceFrame {
+  std::int64_t frame = 0;
+  double seconds = 0.0;  ///< into the animation
+  tracer::EmissionUpdate update;
+};
 
-void print_summary(std::ostream& out, const RenderOptions& options,
-                   const tracer::RenderResult& result, double wall_seconds);
+/// The stats JSON of a still, or of `frame` of a sequence.
+nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResult& result,
+                          double wall_seconds, const std::optional<SequenceFrame>& frame = {});
+
+/// The summary of a still, written to `image`.
+void print_summary(std::ostream& out, const std::filesystem::path& image, const tracer::RenderResult& result,
+                   double wall_seconds);
+
+/// One line for a frame of a sequence.
+void print_frame(std::ostream& out, const std::filesystem::path& image, const tracer::RenderResult& result,
+                 const SequenceFrame& frame, double wall_seconds);
 
 }  // namespace trs

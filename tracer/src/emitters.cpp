@@ -1,10 +1,12 @@
 #include "tracer/emitters.h"
 
 #include <algorithm>
+#include <chrono>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "image_sequence.h"
 #include "luminance.h"
 
 namespace tracer {
@@ -24,22 +26,32 @@ lightsampler::Addressing addressing(const Texture& texture) {
 
 }  // namespace
 
-Emitters::Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampler) {
+Emitters::Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampler, std::int64_t frame,
+                   double seconds)
+    : scene_(scene) {
   std::vector<std::uint32_t> emission_of_material(scene.materials.size(), kNotLight);
-  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+  double decode_ms = 0.0;
+  for (std::uint32_t m = 0; m < scene.materials.size(); ++m) {
     if (!scene.materials[m].emissive()) continue;
     emission_of_material[m] = std::uint32_t(emissions_.size());
-    add_emission(scene, scene.materials[m]);
+    emissions_.push_back(emission_at(m, frame, seconds, nullptr, decode_ms));
   }
   lights_of_scene_.assign(scene.mesh.triangle_count(), kNotLight);
   for (std::uint32_t t = 0; t < scene.mesh.triangle_count(); ++t) {
     const std::uint32_t emission = emission_of_material[scene.mesh.materials[t]];
-    if (emission != kNotLight) add_light(scene, t, emission);
+    if (emission != kNotLight) add_light(t, emission);
   }
   for (const Emission& e : emissions_)
     map_views_.push_back({e.luminance, e.width, e.height, e.addressing, e.strength});
   sampler_ = lightsampler::make_sampler(mesh(), map_views_, sampler);
-  // The counting pass alone gives every light's integral.
+  integrate();
+}
+
+Emitters::~Emitters() = default;
+
+void Emitters::integrate() {
+  // The counting pass alone gives every light's integral; after update_map it counts the
+  // replaced maps' triangles only.
   lightsampler::Frame frame;
   lightsampler::FrameRequest request;
   request.realize = false;
@@ -48,22 +60,41 @@ Emitters::Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampl
   total_density_ = frame.expected_total;
 }
 
-Emitters::~Emitters() = default;
+namespace {
 
-void Emitters::add_emission(const Scene& scene, const Material& material) {
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+Emitters::Emission Emitters::emission_at(std::uint32_t material_index, std::int64_t frame, double seconds,
+                                         const Emission* current, double& decode_ms) const {
+  const Material& material = scene_.materials[material_index];
   Emission e;
-  e.strength = material.emissive_strength;
+  e.material = material_index;
+  e.factor = material.emissive_factor_at(seconds);
+  e.strength = material.emissive_strength_at(seconds);
   e.double_sided = material.double_sided;
   if (material.emissive_texture == kNoTexture) {
-    e.radiance = {material.emissive_factor};
+    e.radiance = {e.factor};
   } else {
-    const Texture& texture = scene.textures.at(std::size_t(material.emissive_texture));
+    const Texture& texture = scene_.textures.at(std::size_t(material.emissive_texture));
     e.width = texture.width;
     e.height = texture.height;
     e.addressing = addressing(texture);
-    e.radiance.reserve(texture.texels.size());
-    for (const glm::vec3& texel : texture.texels)
-      e.radiance.push_back(glm::max(texel * material.emissive_factor, glm::vec3(0.0f)));
+    e.image_frame = texture.frames ? texture.frames->image_frame(frame) : 0;
+    if (current && current->factor == e.factor && current->image_frame == e.image_frame) {
+      e.radiance = current->radiance;  // only the strength changes: the texels stay
+      e.luminance = current->luminance;
+      e.mean_density = current->mean_density / current->strength * e.strength;
+      return e;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<glm::vec3> texels = texture.frames ? read_sequence_frame(texture, frame) : texture.texels;
+    decode_ms += ms_since(start);
+    e.radiance.reserve(texels.size());
+    for (const glm::vec3& texel : texels) e.radiance.push_back(glm::max(texel * e.factor, glm::vec3(0.0f)));
   }
   e.luminance.reserve(e.radiance.size());
   double sum = 0.0;
@@ -72,10 +103,38 @@ void Emitters::add_emission(const Scene& scene, const Material& material) {
     sum += e.luminance.back();
   }
   e.mean_density = sum / double(e.luminance.size()) * e.strength;
-  emissions_.push_back(std::move(e));
+  return e;
 }
 
-void Emitters::add_light(const Scene& scene, std::uint32_t triangle, std::uint32_t emission) {
+EmissionUpdate Emitters::set_frame(std::int64_t frame, double seconds) {
+  EmissionUpdate update;
+  for (std::uint32_t i = 0; i < emissions_.size(); ++i) {
+    Emission& current = emissions_[i];
+    const Material& material = scene_.materials[current.material];
+    const bool sequence = material.emissive_texture != kNoTexture &&
+                          scene_.textures[std::size_t(material.emissive_texture)].frames;
+    if (!sequence && !material.emission_animated()) continue;
+    Emission next = emission_at(current.material, frame, seconds, &current, update.decode_ms);
+    if (next.factor == current.factor && next.strength == current.strength &&
+        next.image_frame == current.image_frame)
+      continue;
+    current = std::move(next);
+    map_views_[i] = {current.luminance, current.width, current.height, current.addressing, current.strength};
+    const auto start = std::chrono::steady_clock::now();
+    sampler_->update_map(i, map_views_[i]);
+    update.upload_ms += ms_since(start);
+    update.maps.push_back(i);
+  }
+  if (update.changed()) {
+    const auto start = std::chrono::steady_clock::now();
+    integrate();
+    update.counting_ms = ms_since(start);
+  }
+  return update;
+}
+
+void Emitters::add_light(std::uint32_t triangle, std::uint32_t emission) {
+  const Scene& scene = scene_;
   lights_of_scene_[triangle] = count();
   scene_triangles_.push_back(triangle);
   glm::vec3 p[3];

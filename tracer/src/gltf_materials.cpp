@@ -1,14 +1,15 @@
 #include "gltf_materials.h"
 
 #include <cmath>
-#include <cstring>
 #include <map>
+#include <regex>
 #include <string>
 #include <utility>
 
-#include "scene_io/color.h"
+#include "image_sequence.h"
 #include "scene_io/file_error.h"
 #include "scene_io/image_output.h"
+#include "texture_decode.h"
 
 namespace tracer {
 namespace {
@@ -65,19 +66,15 @@ Texture read_texture(const Document& document, int index, Use use) {
     pixels = trs::read_image(image.image, format, file, name);
     prefix = name + ": ";
   }
-  if (use == Use::colour && pixels.integer) trs::srgb_to_linear(pixels.rgb);
-  for (std::size_t i = 0; i < pixels.rgb.size(); ++i) {
-    if (std::isfinite(pixels.rgb[i])) continue;
-    const std::size_t texel = i / 3;
-    throw trs::FileError(file, prefix + "texel (x " + std::to_string(texel % pixels.width) +
-                                   ", y " + std::to_string(texel / pixels.width) +
-                                   " from the top) is not finite");
-  }
   texture.width = pixels.width;
   texture.height = pixels.height;
-  static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
-  texture.texels.resize(pixels.rgb.size() / 3);
-  std::memcpy(texture.texels.data(), pixels.rgb.data(), pixels.rgb.size() * sizeof(float));
+  texture.texels = linear_texels(std::move(pixels), use == Use::colour, file, prefix);
+  // An image that plays a sequence: its frames are read as its poster is (colour).
+  const tinygltf::Value& frames = image.extras.Get("frames");
+  if (use == Use::colour && frames.IsString()) {
+    texture.frames = read_image_sequence(document.file(), frames.Get<std::string>(), texture.width,
+                                         texture.height, label("image", std::size_t(source.source), image.name));
+  }
 
   if (source.sampler >= 0) {
     if (std::size_t(source.sampler) >= model.samplers.size())
@@ -134,6 +131,55 @@ float emissive_strength(const tinygltf::Material& material, const Document& docu
   return float(value);
 }
 
+/// The keyframes of an animation sampler: times (seconds, increasing) and `components` values
+/// per time, finite and non-negative.
+Keyframes keyframes(const Document& document, const trs::gltf::Document::PointerChannel& channel,
+                    int components) {
+  const tinygltf::AnimationSampler& sampler =
+      document.model().animations[std::size_t(channel.animation)].samplers[std::size_t(channel.sampler)];
+  const std::string what = "animation " + std::to_string(channel.animation) + " sampler " +
+                           std::to_string(channel.sampler) + " (" + channel.pointer + ")";
+  if (sampler.interpolation != "LINEAR" && sampler.interpolation != "STEP")
+    document.fail(what + ": " + sampler.interpolation + " interpolation is not supported (LINEAR and STEP are)");
+  Keyframes keys;
+  keys.step = sampler.interpolation == "STEP";
+  keys.times = document.floats(sampler.input, 1, what + " input");
+  const std::vector<float> values = document.floats(sampler.output, components, what + " output");
+  if (keys.times.empty() || values.size() != keys.times.size() * std::size_t(components))
+    document.fail(what + ": needs one output per input time, and at least one");
+  for (std::size_t i = 0; i < keys.times.size(); ++i) {
+    if (!std::isfinite(keys.times[i]) || (i > 0 && !(keys.times[i] > keys.times[i - 1])))
+      document.fail(what + ": input times must be finite and increasing");
+    glm::vec3 value(0.0f);
+    for (int k = 0; k < components; ++k) value[k] = values[i * std::size_t(components) + std::size_t(k)];
+    if (!(value.x >= 0.0f && value.y >= 0.0f && value.z >= 0.0f) || !std::isfinite(value.x + value.y + value.z))
+      document.fail(what + ": output values must be finite and non-negative");
+    keys.values.push_back(value);
+  }
+  return keys;
+}
+
+/// The emission that animation channels drive by pointer (KHR_animation_pointer): a material's
+/// emissiveFactor or its KHR_materials_emissive_strength. Other pointers animate what the
+/// renderer keeps still.
+void read_emission_animation(const Document& document, Scene& scene) {
+  static const std::regex pointer(
+      "/materials/([0-9]+)/(emissiveFactor|extensions/KHR_materials_emissive_strength/emissiveStrength)");
+  for (const auto& channel : document.pointer_channels()) {
+    std::smatch match;
+    if (!std::regex_match(channel.pointer, match, pointer)) continue;
+    const std::size_t m = std::stoul(match[1].str());
+    if (m >= scene.materials.size())
+      document.fail("animation " + std::to_string(channel.animation) + ": " + channel.pointer +
+                    " names a material that does not exist");
+    Material& material = scene.materials[m];
+    if (match[2] == "emissiveFactor")
+      material.emissive_factor_keys = keyframes(document, channel, 3);
+    else
+      material.emissive_strength_keys = keyframes(document, channel, 1);
+  }
+}
+
 }  // namespace
 
 void read_materials(const Document& document, Scene& scene) {
@@ -159,6 +205,7 @@ void read_materials(const Document& document, Scene& scene) {
     material.double_sided = source.doubleSided;
     scene.materials.push_back(std::move(material));
   }
+  read_emission_animation(document, scene);
 }
 
 }  // namespace tracer

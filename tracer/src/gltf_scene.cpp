@@ -110,7 +110,7 @@ void read_geometry(const Document& document, Scene& scene) {
         }
         if (primitive.material < 0 && !default_material) {
           default_material = static_cast<std::uint32_t>(scene.materials.size());
-          scene.materials.push_back(Material{.name = "default"});
+          scene.materials.emplace_back().name = "default";
         }
         const auto material =
             primitive.material >= 0 ? std::uint32_t(primitive.material) : *default_material;

@@ -15,6 +15,7 @@ class Resampled : public LightStrategy {
   explicit Resampled(std::unique_ptr<LightStrategy> source) : source_(std::move(source)) {}
   std::string name() const override { return "ris"; }
   void begin_frame(std::uint64_t frame) override { source_->begin_frame(frame); }
+  void emission_changed() override { source_->emission_changed(); }
   std::optional<LightSample> sample(const LightRandom& random,
                                     const ShadingPoint& at) const override {
     return source_->sample(random, at);

@@ -79,36 +79,63 @@ lightsampler::SamplerOptions sampler_options(const RenderSettings& settings) {
   return options;
 }
 
+/// The lights of a still must emit something; an animation's may be dark in some frames.
+const Emitters& lit(const Emitters& emitters, const Scene& scene) {
+  if (emitters.count() > 0 && !(emitters.total_density() > 0.0) && !scene.animated())
+    throw std::invalid_argument("the lights emit nothing: no emissive texel has any luminance");
+  return emitters;
+}
+
 }  // namespace
 
 struct Renderer::State {
   const Scene& scene;
   RenderSettings settings;
+  std::int64_t frame;
   double setup_seconds = 0.0;
   Geometry geometry;
   Emitters emitters;
   std::unique_ptr<LightStrategy> strategy;
   PinholeCamera camera;
 
-  State(const Scene& s, const RenderSettings& r)
+  State(const Scene& s, const RenderSettings& r, std::int64_t f)
       : scene(s),
         settings(r),
+        frame(f),
         geometry(s.mesh),
-        emitters(s, sampler_options(r)),
-        strategy(make_light_strategy(emitters, r.strategy)),
+        emitters(s, sampler_options(r), f, double(f) / r.fps),
+        strategy(make_light_strategy(lit(emitters, s), r.strategy)),
         camera(scene_camera(s), r.width, r.height) {}
 };
 
-Renderer::Renderer(const Scene& scene, const RenderSettings& settings) {
+Renderer::Renderer(const Scene& scene, const RenderSettings& settings, std::int64_t frame) {
   if (settings.width == 0 || settings.height == 0)
     throw std::invalid_argument("the image needs a width and a height of at least 1");
   if (std::uint64_t(settings.width) * settings.height >= (1ull << 32))
     throw std::invalid_argument("the image has 2^32 pixels or more");
+  if (!(settings.fps > 0.0) || !std::isfinite(settings.fps))
+    throw std::invalid_argument("the frame rate must be positive and finite");
   const auto start = Clock::now();
-  state_ = std::make_unique<State>(scene, settings);
+  state_ = std::make_unique<State>(scene, settings, frame);
   state_->setup_seconds = seconds_since(start);
 }
 
+void Renderer::set_deadline(std::optional<Clock::time_point> deadline) { state_->settings.deadline = deadline; }
+
+EmissionUpdate Renderer::set_frame(std::int64_t frame) {
+  State& s = *state_;
+  s.frame = frame;
+  EmissionUpdate update = s.emitters.set_frame(frame, double(frame) / s.settings.fps);
+  if (update.changed()) {
+    const auto start = Clock::now();
+    s.strategy->emission_changed();
+    update.strategy_ms = 1000.0 * seconds_since(start);
+  }
+  return update;
+}
+
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
 Renderer::~Renderer() = default;
 
 RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& progress,
@@ -121,7 +148,8 @@ RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& pro
   const std::size_t pixels = std::size_t(settings.width) * settings.height;
   const PathTracer tracer(s.scene, s.geometry, s.emitters, *s.strategy, settings.max_depth,
                           connection_candidates(settings.strategy));
-  const lightsampler::PhiloxKey key = path_key(settings.seed);
+  const std::uint64_t frame_seed = settings.seed ^ lightsampler::mix64(std::uint64_t(s.frame));
+  const lightsampler::PhiloxKey key = path_key(frame_seed);
 
   RenderResult result;
   result.width = settings.width;
@@ -136,7 +164,8 @@ RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& pro
   const auto start = Clock::now();
 
   for (unsigned f = 0; f < settings.spp && !cancel; ++f) {
-    s.strategy->begin_frame(f);
+    // The light sets of animation frames apart as their paths are: frame 0's are a still's.
+    s.strategy->begin_frame(std::uint64_t(s.frame) << 32 | f);
     tbb::parallel_for(
         tbb::blocked_range2d<unsigned>(0, settings.height, 8, 0, settings.width, 8),
         [&](const tbb::blocked_range2d<unsigned>& tile) {

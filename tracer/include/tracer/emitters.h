@@ -21,14 +21,34 @@
 
 namespace tracer {
 
+/// What a change of frame did to the emission, and what it took.
+struct EmissionUpdate {
+  std::vector<std::uint32_t> maps;  ///< the emissions (density maps) that changed
+  double decode_ms = 0.0;           ///< reading the sequences' new images
+  double upload_ms = 0.0;           ///< handing the new maps to the light sampler (to the GPU on Vulkan)
+  double counting_ms = 0.0;         ///< counting the changed maps' triangles again
+  double strategy_ms = 0.0;         ///< the light strategy's own structures (Renderer::set_frame)
+
+  bool changed() const { return !maps.empty(); }
+};
+
 class Emitters {
  public:
-  /// Builds the light sampler over the lights with `sampler` (lightsampler::make_sampler).
+  /// Builds the light sampler over the lights with `sampler` (lightsampler::make_sampler), their
+  /// emission as it is at animation frame `frame`, `seconds` into the animation (Scene: image
+  /// sequences and keyed factors). The scene must outlive the emitters.
   /// Throws std::invalid_argument naming the material or texture that cannot be an emitter
   /// (a texture wrap mode the sampler does not have), lightsampler::VulkanUnavailable when a
-  /// Vulkan sampler was asked for and none can be made.
-  Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampler);
+  /// Vulkan sampler was asked for and none can be made, trs::FileError for a sequence's image
+  /// that cannot be read.
+  Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampler, std::int64_t frame = 0,
+           double seconds = 0.0);
   ~Emitters();
+
+  /// The emission of animation frame `frame`, `seconds` into the animation: the maps that
+  /// change are replaced in the light sampler, which counts their triangles again, and the
+  /// lights' integrals follow. Throws trs::FileError for an image that cannot be read.
+  EmissionUpdate set_frame(std::int64_t frame, double seconds);
 
   /// Emissive triangles ("lights"), numbered 0..count()-1 in scene order.
   std::uint32_t count() const { return std::uint32_t(scene_triangles_.size()); }
@@ -68,6 +88,7 @@ class Emitters {
  private:
   /// One emissive material: radiance per texel (emissive factor times texture), its strength.
   struct Emission {
+    std::uint32_t material = 0;
     std::uint32_t width = 1;
     std::uint32_t height = 1;
     std::vector<glm::vec3> radiance;
@@ -76,10 +97,19 @@ class Emitters {
     float strength = 1.0f;
     bool double_sided = false;
     double mean_density = 0.0;  ///< mean of `luminance` times strength
+    // What the emission shows now, to tell a change of frame that changes it.
+    glm::vec3 factor{0.0f};
+    std::int64_t image_frame = 0;  ///< of the texture's sequence
   };
-  void add_emission(const Scene& scene, const Material& material);
-  void add_light(const Scene& scene, std::uint32_t triangle, std::uint32_t emission);
+  /// The emission of material `material` at a frame and time, its texels decoded (timed into
+  /// `decode_ms`) only where they differ from `current`'s.
+  Emission emission_at(std::uint32_t material, std::int64_t frame, double seconds, const Emission* current,
+                       double& decode_ms) const;
+  void add_light(std::uint32_t triangle, std::uint32_t emission);
+  /// The lights' integrals, from the sampler's counting pass.
+  void integrate();
 
+  const Scene& scene_;
   std::vector<std::uint32_t> scene_triangles_;
   std::vector<std::uint32_t> lights_of_scene_;  ///< per scene triangle; kNotLight if none
   std::vector<Emission> emissions_;

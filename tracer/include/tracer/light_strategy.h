@@ -89,6 +89,9 @@ class LightStrategy {
   virtual std::string name() const = 0;
   /// Called before each frame's paths; `frame` numbers frames from 0.
   virtual void begin_frame(std::uint64_t frame) { (void)frame; }
+  /// The emitters' emission changed (Emitters::set_frame): whatever the strategy built from it
+  /// is built again, or refitted.
+  virtual void emission_changed() {}
   /// A point on the lights, seen from `at`; none when the lights have nothing to offer this
   /// frame.
   virtual std::optional<LightSample> sample(const LightRandom& random,

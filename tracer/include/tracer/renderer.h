@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "tracer/emitters.h"
 #include "tracer/light_strategy.h"
 #include "tracer/scene.h"
 
@@ -23,7 +24,11 @@ struct RenderSettings {
   /// No frame starts at or after this instant; the first always runs.
   std::optional<std::chrono::steady_clock::time_point> deadline;
   unsigned max_depth = 4;   ///< see PathTracer
+  /// Animation frame f renders with its own random streams, from seed ^ mix64(f): frame 0's are
+  /// a still image's.
   std::uint64_t seed = 0;
+  /// Animation frames per second: frame f is f / fps seconds into the scene's animation.
+  double fps = 24.0;
   unsigned threads = 0;     ///< paths and CPU light sampler; 0: every hardware thread
   StrategyOptions strategy;
   /// The light sampler's backend and device (its CPU threads are `threads`).
@@ -64,10 +69,19 @@ struct RenderResult {
 
 class Renderer {
  public:
-  /// Builds the ray-tracing structure, the emitters and the strategy. Throws
-  /// std::invalid_argument on a scene that cannot be rendered with these settings.
-  Renderer(const Scene& scene, const RenderSettings& settings);
+  /// Builds the ray-tracing structure, the emitters and the strategy, the emission as it is at
+  /// animation frame `frame`. Throws std::invalid_argument on a scene that cannot be rendered
+  /// with these settings (a still whose lights emit nothing, say).
+  Renderer(const Scene& scene, const RenderSettings& settings, std::int64_t frame = 0);
+  Renderer(Renderer&&) noexcept;
+  Renderer& operator=(Renderer&&) noexcept;
   ~Renderer();
+
+  /// Moves to animation frame `frame`: the emission that changes is replaced, and the light
+  /// strategy updates what depends on it. The next render() renders that frame.
+  EmissionUpdate set_frame(std::int64_t frame);
+  /// The instant at or after which the next render() starts no frame (RenderSettings::deadline).
+  void set_deadline(std::optional<std::chrono::steady_clock::time_point> deadline);
 
   /// Renders settings.spp frames, or fewer by the deadline. `progress(done, total)` after each
   /// frame. When `cancel` becomes true, the frame under way is dropped and the frames done so

@@ -2,6 +2,7 @@
 // A scene as the tracer renders it: one world-space triangle mesh, its materials and textures
 // (linear, decoded at load time), and a camera. Loaders fill it; nothing here knows glTF.
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -10,10 +11,26 @@
 
 #include <glm/glm.hpp>
 
+#include "scene_io/frame_pattern.h"
+
 namespace tracer {
 
 /// How texture coordinates outside [0, 1] are brought back, per axis (glTF sampler wrap modes).
 enum class Wrap : std::uint8_t { repeat, clamp, mirrored_repeat };
+
+/// Images that make a texture change over time: image f is the texture at animation frame f,
+/// and before the first image and after the last those hold.
+struct ImageSequence {
+  std::filesystem::path directory;
+  trs::FramePattern names;  ///< the images' file names: "screen.%04d.png"
+  std::int64_t first = 0;   ///< every frame from first to last has its file
+  std::int64_t last = 0;
+
+  /// The frame whose image stands at animation frame `frame`: held beyond the ends.
+  std::int64_t image_frame(std::int64_t frame) const { return std::clamp(frame, first, last); }
+  /// The file of image frame `frame` (not clamped).
+  std::filesystem::path file(std::int64_t frame) const { return directory / names.format(frame); }
+};
 
 /// Linear RGB texels, row-major, row 0 at v = 0 (glTF's convention: the image's top row).
 /// Colour textures are decoded from their encoding (sRGB) to linear Rec.709 at load time; data
@@ -28,6 +45,19 @@ struct Texture {
   /// glTF's magnification filter asked for nearest. Emission is always read nearest (texel for
   /// texel with the light sampler); other textures are bilinear unless this is set.
   bool nearest = false;
+  /// An emissive texture that plays a sequence; `texels` are then its poster image's. Every
+  /// image of the sequence has the poster's size.
+  std::optional<ImageSequence> frames;
+};
+
+/// A value keyed over time (a glTF animation sampler), read between keys LINEAR or STEP; before
+/// the first key and after the last, those hold.
+struct Keyframes {
+  std::vector<float> times;       ///< seconds, increasing
+  std::vector<glm::vec3> values;  ///< one per time; a scalar is in x
+  bool step = false;
+
+  glm::vec3 at(double seconds) const;
 };
 
 inline constexpr std::int32_t kNoTexture = -1;
@@ -48,11 +78,23 @@ struct Material {
   float emissive_strength = 1.0f;
   /// Single-sided surfaces emit from their front face only (counter-clockwise winding).
   bool double_sided = false;
+  /// The factor and the strength animated (KHR_animation_pointer): then they replace the
+  /// constants above, which hold at rest.
+  std::optional<Keyframes> emissive_factor_keys;
+  std::optional<Keyframes> emissive_strength_keys;  ///< in x
 
-  bool emissive() const {
-    return emissive_strength > 0.0f &&
-           (emissive_factor.r > 0.0f || emissive_factor.g > 0.0f || emissive_factor.b > 0.0f);
+  /// The emissive factor and strength at a time.
+  glm::vec3 emissive_factor_at(double seconds) const {
+    return emissive_factor_keys ? emissive_factor_keys->at(seconds) : emissive_factor;
   }
+  float emissive_strength_at(double seconds) const {
+    return emissive_strength_keys ? emissive_strength_keys->at(seconds).x : emissive_strength;
+  }
+
+  /// Whether the material emits at any time.
+  bool emissive() const;
+  /// Whether its emission changes over time (its texture's sequence aside).
+  bool emission_animated() const { return emissive_factor_keys || emissive_strength_keys; }
 };
 
 /// Every triangle of the scene in world space. Vertices are not shared between primitives.
@@ -81,6 +123,9 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::optional<Camera> camera;  ///< the first camera of the scene's node hierarchy, if any
+
+  /// Whether any emission changes over time: a sequence or keyed factors.
+  bool animated() const;
 };
 
 }  // namespace tracer

@@ -219,7 +219,7 @@ LightTree::LightTree(const Emitters& emitters, std::span<const double> power)
                                           emitters.two_sided(light), phi);
     items.push_back({b, b.centre(), light});
   }
-  if (items.empty()) throw std::invalid_argument("the lights have no area or emit nothing");
+  if (items.empty()) return;  // the lights emit nothing (a dark frame)
   nodes_.resize(2 * items.size() - 1);
   Build{*this}.subtree(items, 0, 0, 0);
 }
@@ -234,6 +234,7 @@ float branch_probability(float first, int child) { return child == 0 ? first : 1
 
 std::optional<LightTree::Pick> LightTree::sample(double u, const ShadingPoint& at,
                                                  const NodeImportance& importance) const {
+  if (nodes_.empty()) return std::nullopt;
   std::uint32_t index = 0;
   float pmf = 1.0f;
   while (!nodes_[index].leaf) {

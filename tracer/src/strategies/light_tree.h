@@ -72,8 +72,8 @@ std::vector<double> tree_power(const Emitters& emitters, TreePower source);
 
 class LightTree {
  public:
-  /// Over the lights whose `power` (one per light) is positive. Throws std::invalid_argument
-  /// when none is.
+  /// Over the lights whose `power` (one per light) is positive; empty when none is (nothing
+  /// is sampled).
   LightTree(const Emitters& emitters, std::span<const double> power);
 
   struct Pick {
@@ -86,8 +86,7 @@ class LightTree {
   /// bit. Zero for lights outside the tree.
   float pmf(std::uint32_t light, const ShadingPoint& at, const NodeImportance& importance) const;
 
-  /// Parents before their children, a subtree's nodes contiguous: walking them backwards visits
-  /// children first, which is all a refit of the powers needs.
+  /// Parents before their children, a subtree's nodes contiguous.
   std::span<const LightTreeNode> nodes() const { return nodes_; }
   std::size_t bytes() const;
 

@@ -53,7 +53,6 @@ PieceTable::PieceTable(const Emitters& emitters, std::size_t max_pieces)
                       }
                     });
   if (total > max_pieces) throw std::invalid_argument(too_many(max_pieces));
-  if (total == 0) throw std::invalid_argument("the lights emit nothing: no texel piece to draw from");
   cells_.reserve(total);
   weights_.reserve(total);
   for (std::uint32_t l = 0; l < emitters.count(); ++l) {

@@ -29,7 +29,7 @@ class PieceTable {
   static constexpr std::size_t kMaxPieces = std::size_t(1) << 23;
 
   /// Throws std::invalid_argument when the lights have more than `max_pieces` pieces of
-  /// non-zero density, or none.
+  /// non-zero density. With none (the lights emit nothing), the table is empty.
   explicit PieceTable(const Emitters& emitters, std::size_t max_pieces = kMaxPieces);
 
   std::size_t size() const { return cells_.size(); }

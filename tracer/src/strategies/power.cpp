@@ -13,6 +13,7 @@ class PowerStrategy : public TriangleChoice {
   explicit PowerStrategy(const Emitters& emitters)
       : TriangleChoice(emitters, emitters.light_density()) {}
   std::string name() const override { return "power"; }
+  void emission_changed() override { set_weights(emitters().light_density()); }
 };
 
 }  // namespace

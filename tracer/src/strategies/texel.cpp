@@ -5,6 +5,7 @@
 // target density is worth from what the per-frame point set costs and gives.
 
 #include <chrono>
+#include <optional>
 
 #include <lightsampler/random.h>
 
@@ -20,16 +21,18 @@ float below_one(double u) { return std::min(float(u), 0x1.fffffep-1f); }
 
 class TexelStrategy : public LightStrategy {
  public:
-  explicit TexelStrategy(const Emitters& emitters) : emitters_(emitters) {}
+  explicit TexelStrategy(const Emitters& emitters) : emitters_(emitters) { build(); }
 
   std::string name() const override { return "texel"; }
+  void emission_changed() override { build(); }
 
   std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint&) const override {
-    const alias::Pick pick = alias_.sample(word64(random, 0));
-    const std::uint32_t light = table_.light(pick.index);
-    const lightsampler::Barycentrics b = table_.point(pick.index, below_one(pick.u),
-                                                      lightsampler::uniform_float(random[2]),
-                                                      lightsampler::uniform_float(random[3]));
+    if (!alias_) return std::nullopt;  // the lights emit nothing
+    const alias::Pick pick = alias_->sample(word64(random, 0));
+    const std::uint32_t light = table_->light(pick.index);
+    const lightsampler::Barycentrics b = table_->point(pick.index, below_one(pick.u),
+                                                       lightsampler::uniform_float(random[2]),
+                                                       lightsampler::uniform_float(random[3]));
     // Rounding can put a point on its cell's edge into the neighbouring texel: its density is
     // what that texel reads, as pdf() gives it; one without density carries nothing.
     const float p = density(light, b.b1, b.b2);
@@ -41,19 +44,26 @@ class TexelStrategy : public LightStrategy {
     return density(light, b1, b2);
   }
 
-  StrategySetup setup() const override { return {build_ms_, table_.bytes() + alias_.bytes()}; }
+  StrategySetup setup() const override { return {build_ms_, table_->bytes() + (alias_ ? alias_->bytes() : 0)}; }
 
  private:
+  void build() {
+    const auto start = std::chrono::steady_clock::now();
+    table_.emplace(emitters_);
+    alias_.reset();
+    if (table_->total_weight() > 0.0) alias_.emplace(table_->weights());
+    build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+
   float density(std::uint32_t light, float b1, float b2) const {
-    return float(double(emitters_.density(light, b1, b2)) / table_.total_weight());
+    const double total = table_->total_weight();
+    return total > 0.0 ? float(double(emitters_.density(light, b1, b2)) / total) : 0.0f;
   }
 
   const Emitters& emitters_;
-  // Built in this order; the set-up time is what they took.
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  PieceTable table_{emitters_};
-  alias::Table alias_{table_.weights()};
-  double build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+  std::optional<PieceTable> table_;
+  std::optional<alias::Table> alias_;  ///< none when the lights emit nothing
+  double build_ms_ = 0.0;
 };
 
 }  // namespace

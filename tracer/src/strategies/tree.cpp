@@ -30,9 +30,10 @@ constexpr double kMaxSphericalSolidAngle = 6.22;
 
 class TreeStrategy : public LightStrategy {
  public:
-  TreeStrategy(const Emitters& emitters, std::span<const double> power,
-               std::unique_ptr<const NodeImportance> importance)
-      : emitters_(emitters), tree_(emitters, power, std::move(importance)) {}
+  TreeStrategy(const Emitters& emitters, TreePower power, std::unique_ptr<const NodeImportance> importance)
+      : emitters_(emitters), power_(power), tree_(emitters, tree_power(emitters, power), std::move(importance)) {}
+
+  void emission_changed() override { tree_.update(emitters_, tree_power(emitters_, power_)); }
 
   std::string name() const override { return "tree"; }
 
@@ -91,6 +92,7 @@ class TreeStrategy : public LightStrategy {
   }
 
   const Emitters& emitters_;
+  TreePower power_;
   TreePicker tree_;
 };
 
@@ -98,7 +100,7 @@ class TreeStrategy : public LightStrategy {
 
 std::unique_ptr<LightStrategy> make_tree_strategy(const Emitters& emitters, TreePower power,
                                                   std::unique_ptr<const NodeImportance> importance) {
-  return std::make_unique<TreeStrategy>(emitters, tree_power(emitters, power), std::move(importance));
+  return std::make_unique<TreeStrategy>(emitters, power, std::move(importance));
 }
 
 std::unique_ptr<LightStrategy> make_tree_strategy(const Emitters& emitters,

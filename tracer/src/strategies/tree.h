@@ -28,6 +28,11 @@ class TreePicker {
 
   StrategySetup setup() const { return {build_ms_, tree_.bytes()}; }
 
+  /// The lights' powers changed: the tree is built again, as a fresh one over them would be (a
+  /// refit would keep a topology chosen for the old powers, and a frame would then depend on
+  /// the frames before it).
+  void update(const Emitters& emitters, std::span<const double> power) { tree_ = timed_build(emitters, power); }
+
  private:
   LightTree timed_build(const Emitters& emitters, std::span<const double> power) {
     const auto start = std::chrono::steady_clock::now();

@@ -8,14 +8,22 @@
 
 namespace tracer {
 
-TriangleChoice::TriangleChoice(const Emitters& emitters, std::span<const double> weights)
-    : emitters_(emitters), cdf_(weights.size()), area_density_(weights.size(), 0.0f) {
+TriangleChoice::TriangleChoice(const Emitters& emitters, std::span<const double> weights) : emitters_(emitters) {
+  set_weights(weights);
+}
+
+void TriangleChoice::set_weights(std::span<const double> weights) {
+  cdf_.assign(weights.size(), 0.0);
+  area_density_.assign(weights.size(), 0.0f);
   double total = 0.0;
   for (std::size_t i = 0; i < weights.size(); ++i) cdf_[i] = total += weights[i];
-  if (!(total > 0.0)) throw std::invalid_argument("the lights have no area or emit nothing");
+  if (!(total > 0.0)) {  // the lights emit nothing (a dark frame): nothing to sample
+    cdf_.clear();
+    return;
+  }
   for (std::size_t i = 0; i < weights.size(); ++i) {
     cdf_[i] /= total;
-    const float area = emitters.area(std::uint32_t(i));
+    const float area = emitters_.area(std::uint32_t(i));
     if (area > 0.0f) area_density_[i] = float(weights[i] / total / area);
   }
   cdf_.back() = 1.0;
@@ -26,6 +34,7 @@ std::optional<LightSample> TriangleChoice::sample(const LightRandom& random,
   const double u = lightsampler::uniform_double(random[0]);
   // The first light whose CDF exceeds u: zero-weight lights are never chosen.
   const auto light = std::uint32_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
+  // Past the end: no light (an empty CDF), or u at the last rounding of the total.
   if (light >= cdf_.size() || area_density_[light] == 0.0f) return std::nullopt;
   const lightsampler::Barycentrics b = lightsampler::triangle_map(
       lightsampler::uniform_float(random[1]), lightsampler::uniform_float(random[2]));

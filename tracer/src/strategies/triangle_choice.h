@@ -11,12 +11,16 @@ namespace tracer {
 
 class TriangleChoice : public LightStrategy {
  public:
-  /// `weights` per light, non-negative, not all zero.
+  /// `weights` per light, non-negative; all zero, nothing is sampled.
   TriangleChoice(const Emitters& emitters, std::span<const double> weights);
 
   std::optional<LightSample> sample(const LightRandom& random,
                                     const ShadingPoint& at) const override;
   float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override;
+
+ protected:
+  void set_weights(std::span<const double> weights);
+  const Emitters& emitters() const { return emitters_; }
 
  private:
   const Emitters& emitters_;

@@ -57,8 +57,6 @@ class TrsStrategy : public LightStrategy {
         sampler_(emitters.sampler()),
         target_(options.lights),
         seed_(options.seed) {
-    if (!(emitters.total_density() > 0.0))
-      throw std::invalid_argument("the lights emit nothing: no density to sample");
     // Picking one light of the set takes 32 random bits.
     if (!(target_ >= 1.0 && target_ < 0x1p32))
       throw std::invalid_argument("trs takes 1 to 2^32 - 1 lights per frame");
@@ -105,7 +103,8 @@ class TrsStrategy : public LightStrategy {
  private:
   /// p(x) = D(x) / integral of D: the density the set has in expectation.
   float density(std::uint32_t light, float b1, float b2) const {
-    return float(double(emitters_.density(light, b1, b2)) / emitters_.total_density());
+    const double total = emitters_.total_density();
+    return total > 0.0 ? float(double(emitters_.density(light, b1, b2)) / total) : 0.0f;
   }
 
   /// Lemire's multiply-shift: a light of the set, uniform over n < 2^32 with a bias below
