@@ -3,13 +3,25 @@
 # lighting a room) with uniform light sampling and with Triangle Rejection Sampling at equal
 # samples per pixel, and prints how much less noisy TRS is against a converged reference. Then
 # samples the demo neon panel with the light sampler alone: TRS against plain rejection sampling.
+#
+# tools/demo.sh --animation [SECONDS]: the video wall's 48 frames instead, rendered with uniform
+# light sampling and with the default strategy (trs) at equal time per frame (SECONDS, 1.5 by
+# default), into build/demo/animation/: each strategy's frames, and video-wall.mp4 showing the
+# two side by side, labelled (ffmpeg, installed with the other packages).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash tools/setup-debian.sh
+if [ "${1:-}" = --animation ]; then
+  bash tools/setup-debian.sh --video
+else
+  bash tools/setup-debian.sh
+fi
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build
 out=build/demo
 mkdir -p "$out"
+if [ "${1:-}" = --animation ]; then
+  exec bash tools/demo/animation.sh "$out/animation" "${2:-1.5}"
+fi
 
 scene=scenes/neon-sign
 for strategy in uniform trs; do

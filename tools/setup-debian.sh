@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian 12 package the project builds, tests and runs with.
+# Installs every Debian 12 package the project builds, tests and runs with; with --video also
+# ffmpeg, which only the animation demo (tools/demo.sh --animation) uses.
 # Idempotent: does nothing when all of them are present. Needs root (or sudo).
 set -euo pipefail
 
@@ -23,6 +24,9 @@ packages=(
   # fuzzing (libFuzzer and the sanitizer runtimes of Clang)
   clang libclang-rt-14-dev
 )
+if [ "${1:-}" = --video ]; then
+  packages+=(ffmpeg fonts-dejavu-core)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
