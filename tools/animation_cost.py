@@ -4,7 +4,7 @@
 Renders frames of an animated scene with trs-render (--frames, one sample a pixel: the render
 itself is not what is measured), and averages over every frame but the first, where everything
 is built, the stats' emission_update_ms (decode, upload, counting, strategy) and the light
-sampler's milliseconds per frame. Prints a Markdown table and writes a CSV.
+sampler's milliseconds per sample pass. Prints a Markdown table and writes a CSV.
 
   tools/animation_cost.py --render build/bin/trs-render --scene scenes/video-wall/video-wall.gltf \\
       --frames 0:12 --backends cpu vulkan --csv animation-cost.csv
@@ -57,7 +57,7 @@ def main():
                 work = Path(tmp) / f"{backend}-{strategy}"
                 work.mkdir()
                 rows.append(measure(args, backend, strategy, work))
-    print("| backend | strategy | decode ms | upload ms | counting ms | strategy ms | ready ms | light sampler ms a frame |")
+    print("| backend | strategy | decode ms | upload ms | counting ms | strategy ms | ready ms | light sampler ms a pass |")
     print("|---|---|---|---|---|---|---|---|")
     for r in rows:
         print(f"| {r['backend']} | `{r['strategy']}` | {r['decode_ms']:.2f} | {r['upload_ms']:.2f} | "
