@@ -117,8 +117,19 @@ void Document::read_pointer_channels() {
     text = text.substr(20, load<std::uint32_t>(reinterpret_cast<const unsigned char*>(text.data()) + 12));
   }
   const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
-  if (json.is_discarded() || !json.contains("animations")) return;  // tinygltf parsed it: no animations
+  if (json.is_discarded() || !json.is_object() || !json.contains("animations")) return;  // none
   const nlohmann::json& animations = json["animations"];
+  if (!animations.is_array() || animations.size() != model_.animations.size())
+    fail("malformed glTF: its animations are not an array that tinygltf read whole");
+  // A value of the wrong type (a channel that is no object, say) throws from nlohmann's accessors.
+  try {
+    read_pointer_channels(animations);
+  } catch (const nlohmann::json::exception&) {
+    fail("malformed glTF: an animation channel is not an object with a target and a sampler");
+  }
+}
+
+void Document::read_pointer_channels(const nlohmann::json& animations) {
   for (std::size_t a = 0; a < animations.size(); ++a) {
     const nlohmann::json& channels = animations[a].value("channels", nlohmann::json::array());
     for (std::size_t c = 0; c < channels.size(); ++c) {

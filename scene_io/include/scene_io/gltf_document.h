@@ -5,6 +5,7 @@
 // range checked, and the triangles of strips and fans. Every failure is a FileError naming the
 // file. Geometry is taken in its bind pose: skins and morph targets are not applied.
 
+#include <nlohmann/json_fwd.hpp>
 #include <tiny_gltf.h>
 
 #include <cstdint>
@@ -96,6 +97,7 @@ class Document {
                                              const std::string& what) const;
 
   void read_pointer_channels();
+  void read_pointer_channels(const nlohmann::json& animations);
 
   std::filesystem::path file_;
   tinygltf::Model model_;
