@@ -134,27 +134,6 @@ TEST_F(AnalyticQuad, StrategiesAgreeWithOneAnother) {
   }
 }
 
-// Deliberately wrong: points drawn in proportion to power, weighed as if drawn uniformly.
-class PowerDrawnUniformWeighed : public LightStrategy {
- public:
-  explicit PowerDrawnUniformWeighed(const Emitters& emitters)
-      : power_(strategy(emitters, StrategyKind::power)),
-        uniform_(strategy(emitters, StrategyKind::uniform)) {}
-  std::string name() const override { return "wrong"; }
-  std::optional<LightSample> sample(const LightRandom& random,
-                                    const ShadingPoint& at) const override {
-    auto s = power_->sample(random, at);
-    if (s) s->pdf = s->mis_pdf = pdf(s->light, s->b1, s->b2, at);
-    return s;
-  }
-  float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
-    return uniform_->pdf(light, b1, b2, from);
-  }
-
- private:
-  std::unique_ptr<LightStrategy> power_, uniform_;
-};
-
 // Deliberately wrong: point lights weighed by p(x) alone, without the set's N / N_target.
 class TrsWithoutSetSize : public LightStrategy {
  public:
@@ -177,7 +156,9 @@ class TrsWithoutSetSize : public LightStrategy {
 };
 
 TEST_F(AnalyticQuad, TheCheckRejectsWrongStrategies) {
-  PowerDrawnUniformWeighed mismatched(*bench_->emitters);
+  // Points drawn in proportion to power, weighed as if drawn uniformly.
+  DrawnByOneWeighedByAnother mismatched(strategy(*bench_->emitters, StrategyKind::power),
+                                        strategy(*bench_->emitters, StrategyKind::uniform));
   TrsWithoutSetSize unscaled(*bench_->emitters);
   // Used as they are, and resampled: resampling does not hide a wrong source density.
   for (unsigned candidates : {1u, kDefaultCandidates}) {

@@ -188,30 +188,12 @@ TEST_F(ChangingEmission, StrategiesAreThoseBuiltFreshForTheNewEmission) {
 // would, as a strategy half brought up to date would do. (One not told at all stays consistent
 // with itself, and the BSDF's draws, weighed by MIS, cover what it no longer draws: only its
 // variance suffers.)
-class DrawnBeforeWeighedAfter : public LightStrategy {
- public:
-  DrawnBeforeWeighedAfter(std::unique_ptr<LightStrategy> before, std::unique_ptr<LightStrategy> after)
-      : before_(std::move(before)), after_(std::move(after)) {}
-  std::string name() const override { return "wrong"; }
-  std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
-    auto s = before_->sample(random, at);
-    if (s) s->pdf = s->mis_pdf = pdf(s->light, s->b1, s->b2, at);
-    return s;
-  }
-  float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
-    return after_->pdf(light, b1, b2, from);
-  }
-
- private:
-  std::unique_ptr<LightStrategy> before_, after_;
-};
-
 TEST_F(ChangingEmission, TheCheckRejectsLightsDrawnFromTheOldEmission) {
   for (StrategyKind kind : {StrategyKind::power, StrategyKind::texel}) {
     bench_.emitters->set_frame(0, 0.0);
     auto before = make_light_strategy(*bench_.emitters, options(kind));
     bench_.emitters->set_frame(1, 1.0);
-    DrawnBeforeWeighedAfter wrong(std::move(before), make_light_strategy(*bench_.emitters, options(kind)));
+    DrawnByOneWeighedByAnother wrong(std::move(before), make_light_strategy(*bench_.emitters, options(kind)));
     const Estimate e = bench_.run(wrong, 2);
     EXPECT_FALSE(agrees(e, expected_, kSigmas, kQuadratureSlack)) << to_string(kind) << "\n" << describe(e, expected_);
   }

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "estimate.h"
@@ -108,5 +110,25 @@ const std::vector<StrategyKind> kEveryStrategy = {StrategyKind::uniform, Strateg
                                                   StrategyKind::trs,     StrategyKind::ris,
                                                   StrategyKind::tree,    StrategyKind::texel,
                                                   StrategyKind::tree_texel};
+
+/// Deliberately wrong: lights drawn by one strategy and weighed (pdf, MIS) by another's density,
+/// for showing that a check rejects a strategy whose draws and weights disagree.
+class DrawnByOneWeighedByAnother : public LightStrategy {
+ public:
+  DrawnByOneWeighedByAnother(std::unique_ptr<LightStrategy> draws, std::unique_ptr<LightStrategy> weighs)
+      : draws_(std::move(draws)), weighs_(std::move(weighs)) {}
+  std::string name() const override { return "wrong"; }
+  std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
+    auto s = draws_->sample(random, at);
+    if (s) s->pdf = s->mis_pdf = pdf(s->light, s->b1, s->b2, at);
+    return s;
+  }
+  float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
+    return weighs_->pdf(light, b1, b2, from);
+  }
+
+ private:
+  std::unique_ptr<LightStrategy> draws_, weighs_;
+};
 
 }  // namespace trs_test
