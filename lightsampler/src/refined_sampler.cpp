@@ -83,9 +83,12 @@ class RefinedSampler final : public Sampler {
   }
 
   void generate(const FrameRequest& request, Frame& frame) override {
-    const auto start = std::chrono::steady_clock::now();
-    if (stale_) refine_current_maps();
-    const double refine_ms = ms_since(start);
+    double refine_ms = 0.0;
+    if (stale_) {
+      const auto start = std::chrono::steady_clock::now();
+      refine_current_maps();
+      refine_ms = ms_since(start);
+    }
     parts_->generate(request, frame);
     if (!refined_) return add_refinement_pass(frame, refine_ms);
     const auto back = std::chrono::steady_clock::now();
