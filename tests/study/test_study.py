@@ -13,7 +13,7 @@ import unittest
 from pathlib import Path
 
 TOOLS = None  # set from the command line
-STRATEGIES = ["uniform", "power", "trs", "ris"]  # trs-study's default
+STRATEGIES = ["uniform", "power", "tree", "texel", "tree-texel", "trs", "ris"]  # trs-study's default
 
 
 def study(*args):
@@ -55,6 +55,7 @@ class Study(unittest.TestCase):
         self.assertEqual(list(rows[0].keys())[:13], ["strategy", "spp", "time", "seed", "seconds", "frames",
                                                       "relmse", "relmse_lit", "rmse", "mean_ratio", "image", "lights",
                                                       "relmse_lit_32"])
+        self.assertEqual({r["frame"] for r in rows}, {""})  # a still
         for r in rows:
             self.assertTrue((self.out / r["image"]).is_file(), r["image"])
             if r["time"]:
@@ -180,6 +181,90 @@ class StrategySpecs(unittest.TestCase):
         refused = study(TOOLS.scene, "--out", "unused", "--strategies", "ris+candidates-from", "--plan")
         self.assertEqual(refused.returncode, 2)
         self.assertIn("is not OPTION=VALUE", refused.stderr)
+
+
+class Frames(unittest.TestCase):
+    """--frames: every render covers the frames, and each frame is measured against its own
+    reference (the video wall's emission changes every frame)."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.tmp = tempfile.TemporaryDirectory()
+        cls.out = Path(cls.tmp.name) / "frames"
+        cls.scene = Path(TOOLS.scene).parent.parent / "video-wall" / "video-wall.gltf"
+        cls.args = [cls.scene, "--out", cls.out, "--render", TOOLS.render, "--strategies", "uniform,trs",
+                    "--spp", "2", "--time", "0.2", "--seeds", "2", "--reference-spp", "16", "--width", "48",
+                    "--height", "27", "--frames", "3:5", "--quiet"]
+        cls.result = study(*cls.args)
+
+    @classmethod
+    def tearDownClass(cls):
+        cls.tmp.cleanup()
+
+    def rows(self):
+        with open(self.out / "results.csv") as f:
+            return list(csv.DictReader(f))
+
+    def test_one_render_per_setting_covers_every_frame(self):
+        self.assertEqual(self.result.returncode, 0, self.result.stderr)
+        planned = study(*self.args, "--plan")
+        self.assertEqual(planned.returncode, 0, planned.stderr)
+        lines = planned.stdout.splitlines()
+        self.assertEqual(len(lines), 1 + 2 * 2 * 2)  # the references, then (spp, time) x 2 seeds x 2 strategies
+        for line in lines:
+            self.assertIn("--frames 3:5", line)
+        self.assertIn("--out " + str(self.out / "reference.%04d.exr"), lines[0])
+        rows = self.rows()
+        self.assertEqual(sorted(int(r["frame"]) for r in rows), sorted([3, 4, 5] * 2 * 2 * 2))
+
+    def test_each_frame_is_measured_against_its_own_reference(self):
+        for r in self.rows():
+            image, frame = self.out / r["image"], int(r["frame"])
+            self.assertTrue(image.name.endswith(f".{frame:04d}.exr"), image.name)
+            figures = Path(self.tmp.name) / "imgdiff.json"
+            done = subprocess.run([TOOLS.imgdiff, image, self.out / f"reference.{frame:04d}.exr", "--mask",
+                                   self.out / f"emitter-mask.{frame:04d}.exr", "--json", figures],
+                                  capture_output=True, text=True)
+            self.assertEqual(done.returncode, 0, done.stderr)
+            expected = json.loads(figures.read_text())["overall"]["relmse"]
+            self.assertAlmostEqual(float(r["relmse_lit"]) / expected, 1.0, places=5, msg=r["image"])
+
+    def test_summary_reports_the_mean_and_the_worst_frame(self):
+        import numpy as np
+        summary = (self.out / "summary.md").read_text()
+        self.assertIn("averaged over frames 3 to 5", summary)
+        self.assertIn("## Worst frame", summary)
+        self.assertEqual((self.out / "convergence.png").read_bytes()[:8], b"\x89PNG\r\n\x1a\n")
+        rows = [r for r in self.rows() if r["strategy"] == "trs" and r["spp"] == "2"]
+        by_seed = {}
+        for r in rows:
+            by_seed.setdefault(r["seed"], []).append(r)
+        means = [np.mean([float(r["relmse_lit"]) for r in runs]) for runs in by_seed.values()]
+        worsts = [max(float(r["relmse_lit"]) for r in runs) for runs in by_seed.values()]
+        line = next(l for l in summary.splitlines() if l.startswith("| trs | 2 spp |"))
+        cells = [c.strip() for c in line.split("|")[1:-1]]
+        self.assertAlmostEqual(float(cells[2]) / np.median(means), 1.0, places=3)
+        self.assertAlmostEqual(float(cells[4]) / np.median(worsts), 1.0, places=3)
+        self.assertIn(int(cells[3]), [3, 4, 5])
+
+    def test_resume_renders_only_the_missing_frames(self):
+        images = self.out / "images"
+        gone = [images / f"uniform-spp2-seed1.0004{suffix}" for suffix in [".exr", ".json"]]
+        for path in gone:
+            path.unlink()
+        kept = {f: f.stat().st_mtime_ns for f in images.iterdir()}
+        resumed = study(*self.args, "--resume")
+        self.assertEqual(resumed.returncode, 0, resumed.stderr)
+        self.assertTrue(all(path.is_file() for path in gone))
+        self.assertEqual({f: f.stat().st_mtime_ns for f in kept}, kept)
+
+    def test_a_reference_that_is_no_frame_pattern_is_refused(self):
+        refused = study(self.scene, "--out", "unused", "--frames", "0:1", "--reference", "ref.exr", "--plan")
+        self.assertEqual(refused.returncode, 2)
+        self.assertIn("needs one integer conversion", refused.stderr)
+        refused = study(self.scene, "--out", "unused", "--frames", "2:1", "--plan")
+        self.assertEqual(refused.returncode, 2)
+        self.assertIn("takes A:B", refused.stderr)
 
 
 if __name__ == "__main__":
