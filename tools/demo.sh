@@ -5,7 +5,7 @@
 # samples the demo neon panel with the light sampler alone: TRS against plain rejection sampling.
 #
 # tools/demo.sh --animation [SECONDS]: the video wall's 48 frames instead, rendered with uniform
-# light sampling and with the default strategy (trs) at equal time per frame (SECONDS, 1.5 by
+# light sampling and with the default strategy (ris) at equal time per frame (SECONDS, 1.5 by
 # default), into build/demo/animation/: each strategy's frames, and video-wall.mp4 showing the
 # two side by side, labelled (ffmpeg, installed with the other packages).
 set -euo pipefail

@@ -398,11 +398,11 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
         tiny(kScene, {"--refine", "1.5", "--out", file("out.exr").string()}),
         tiny(kScene, {"--time", "0", "--out", file("out.exr").string()}),
         tiny(kScene, {"--time", "-1", "--out", file("out.exr").string()}),
-        tiny(kScene, {"--candidates", "4", "--out", file("out.exr").string()}),  // trs
+        tiny(kScene, {"--strategy", "trs", "--candidates", "4", "--out", file("out.exr").string()}),
         tiny(kScene, {"--strategy", "ris", "--candidates", "0", "--out", file("out.exr").string()}),
-        tiny(kScene, {"--candidates-from", "power", "--out", file("out.exr").string()}),  // trs
+        tiny(kScene, {"--strategy", "trs", "--candidates-from", "power", "--out", file("out.exr").string()}),
         tiny(kScene, {"--strategy", "ris", "--candidates-from", "ris", "--out", file("out.exr").string()}),
-        tiny(kScene, {"--tree-importance", "cycles", "--out", file("out.exr").string()}),  // trs
+        tiny(kScene, {"--tree-importance", "cycles", "--out", file("out.exr").string()}),  // ris over trs
         tiny(kScene, {"--strategy", "ris", "--tree-power", "exact", "--out", file("out.exr").string()}),  // over trs
         tiny(kScene, {"--strategy", "tree", "--tree-importance", "exact", "--out", file("out.exr").string()}),
         tiny(kScene, {"--strategy", "tree", "--tree-power", "mean", "--out", file("out.exr").string()}),
