@@ -94,11 +94,13 @@ def measure(args, backend, strategy, work):
     run = [args.render, args.scene, "--frames", args.frames, "--strategy", strategy, "--backend", backend,
            "--spp", "1", "--width", str(args.width), "--height", str(args.height), "--quiet",
            "--out", str(work / "o.%04d.exr"), "--stats", str(work / "s.%04d.json")]
+    if args.refine is not None:
+        run += ["--refine", args.refine]
     done = subprocess.run(run, capture_output=True, text=True)
     if done.returncode != 0:
         sys.exit(f"animation_cost: {' '.join(run)} failed:\n{done.stderr}")
     stats = [json.loads((work / f"s.{f:04d}.json").read_text()) for f in range(first + 1, last + 1)]
-    row = {"backend": backend, "strategy": strategy, "frames": len(stats)}
+    row = {"backend": backend, "strategy": strategy, "refine": args.refine or "default", "frames": len(stats)}
     for part in PARTS:
         row[part + "_ms"] = statistics.mean(s["emission_update_ms"][part] for s in stats)
     row["ready_ms"] = sum(row[p + "_ms"] for p in PARTS)
@@ -119,6 +121,7 @@ def main():
     parser.add_argument("--strategies", nargs="+", default=STRATEGIES, choices=STRATEGIES)
     parser.add_argument("--width", type=int, default=160)
     parser.add_argument("--height", type=int, default=90)
+    parser.add_argument("--refine", help="trs-render's --refine (the light sampler's subdivision; 0: off)")
     parser.add_argument("--csv", help="write the table as CSV")
     args = parser.parse_args()
     rows = []
