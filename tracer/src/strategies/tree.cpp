@@ -21,8 +21,8 @@ namespace {
 
 /// Solid angles, in steradians, between which a triangle is sampled by direction. Below, cos
 /// theta_l / d^2 varies too little over the triangle for sampling by direction to pay for its
-/// trigonometry: pbrt-v4 starts at 3e-4 sr, which on the shipped scenes cost 14 to 34% more time
-/// per frame for at most 10% less variance (docs/noise.md); from 0.1 sr, a 1 m^2 panel 3 m
+/// trigonometry: pbrt-v4 starts at 3e-4 sr, which on the shipped scenes costs up to 26% more time
+/// per frame for at most 4% less noise (docs/noise.md); from 0.1 sr, a 1 m^2 panel 3 m
 /// away, it pays. Above 6.22 sr (pbrt-v4's) the triangle fills nearly the whole hemisphere and
 /// Arvo's construction loses precision.
 constexpr double kMinSphericalSolidAngle = 0.1;
