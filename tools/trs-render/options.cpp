@@ -70,6 +70,18 @@ class SettingsFile : public CLI::ConfigTOML {
 }  // namespace
 
 std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
+  return parse_render_options(argc, argv, std::cerr, true);
+}
+
+std::variant<RenderOptions, int> parse_render_options(const std::vector<std::string>& arguments,
+                                                      std::ostream& errors, bool out_required) {
+  std::vector<char*> argv;
+  for (const std::string& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  return parse_render_options(int(arguments.size()), argv.data(), errors, out_required);
+}
+
+std::variant<RenderOptions, int> parse_render_options(int argc, char** argv, std::ostream& errors, bool out_required) {
   CLI::App app(
       "Renders a glTF 2.0 scene lit by its emissive textures with a path tracer whose next-event "
       "estimation samples lights uniformly by area, by triangle power, by a light tree that weighs "
@@ -93,7 +105,7 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   app.add_option("SCENE", options.scene, "glTF 2.0 scene (.gltf, .glb)")->required();
   // An option given twice takes its last value, so that a script can override its own defaults.
   app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  app.add_option("--out", out, "linear float RGB OpenEXR image")->required();
+  app.add_option("--out", out, "linear float RGB OpenEXR image")->required(out_required);
   app.add_option("--spp", r.spp, "samples per pixel: frames of one path per pixel")
       ->capture_default_str();
   app.add_option("--time", time,
@@ -181,15 +193,15 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
     return 0;
   } catch (const CLI::ConfigError& e) {
     // CLI11 names the key, not the file it came from.
-    std::cerr << "trs-render: error: " << app.get_option("--settings")->as<std::string>() << ": " << e.what()
+    errors << "trs-render: error: " << app.get_option("--settings")->as<std::string>() << ": " << e.what()
               << " (settings are the long option names)\n";
     return kUsageError;
   } catch (const CLI::ParseError& e) {
-    std::cerr << "trs-render: error: " << e.what() << "\nRun with --help for more information.\n";
+    errors << "trs-render: error: " << e.what() << "\nRun with --help for more information.\n";
     return kUsageError;
   }
   if (r.width == 0 || r.height == 0 || r.spp == 0) {
-    std::cerr << "trs-render: error: --width, --height and --spp must be at least 1\n";
+    errors << "trs-render: error: --width, --height and --spp must be at least 1\n";
     return kUsageError;
   }
   if (app.count("--time") > 0) {
@@ -205,28 +217,28 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   r.strategy.candidates_from = kStrategies.at(candidates_from);
   for (const char* option : {"--candidates", "--candidates-from"}) {
     if (app.count(option) > 0 && r.strategy.kind != tracer::StrategyKind::ris) {
-      std::cerr << "trs-render: error: " << option << " belongs to --strategy ris\n";
+      errors << "trs-render: error: " << option << " belongs to --strategy ris\n";
       return kUsageError;
     }
   }
   r.strategy.tree = {kTreeImportances.at(tree_importance), kTreePowers.at(tree_power)};
   for (const char* option : {"--tree-importance", "--tree-power"}) {
     if (app.count(option) > 0 && !tracer::picks_by_tree(r.strategy)) {
-      std::cerr << "trs-render: error: " << option << " belongs to --strategy tree and tree-texel (or ris over them)\n";
+      errors << "trs-render: error: " << option << " belongs to --strategy tree and tree-texel (or ris over them)\n";
       return kUsageError;
     }
   }
   if (!frames.empty()) {
     const auto range = parse_frames(frames);
     if (!range) {
-      std::cerr << "trs-render: error: --frames takes A:B, frames 0 <= A <= B (" << frames << ")\n";
+      errors << "trs-render: error: --frames takes A:B, frames 0 <= A <= B (" << frames << ")\n";
       return kUsageError;
     }
     options.frames = range;
   }
   for (const char* option : {"--resume", "--plan", "--chunk"}) {
     if (app.count(option) > 0 && !options.frames) {
-      std::cerr << "trs-render: error: " << option << " belongs to --frames\n";
+      errors << "trs-render: error: " << option << " belongs to --frames\n";
       return kUsageError;
     }
   }
@@ -244,7 +256,7 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
   if (options.frames) {
     for (const std::filesystem::path& path : outputs(options)) {
       if (FramePattern::valid(path.filename().string())) continue;
-      std::cerr << "trs-render: error: with --frames, each output names its frame: " << path.string()
+      errors << "trs-render: error: with --frames, each output names its frame: " << path.string()
                 << " needs one integer conversion in its file name (out.%04d.exr)\n";
       return kUsageError;
     }
@@ -253,12 +265,13 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
 }
 
 std::filesystem::path output(const RenderOptions& options, const std::filesystem::path& path, std::int64_t frame) {
-  if (!options.frames) return path;
+  if (!options.frames || path.empty()) return path;
   return path.parent_path() / FramePattern(path.filename().string()).format(frame);
 }
 
 std::vector<std::filesystem::path> outputs(const RenderOptions& options) {
-  std::vector<std::filesystem::path> paths = {options.out};
+  std::vector<std::filesystem::path> paths;
+  if (!options.out.empty()) paths.push_back(options.out);
   for (const auto* path : {&options.stats, &options.preview, &options.variance, &options.emitter_mask})
     if (*path) paths.push_back(**path);
   return paths;

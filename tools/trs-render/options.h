@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <ostream>
 #include <string>
 #include <variant>
 #include <vector>
@@ -46,14 +47,19 @@ struct RenderOptions {
 std::filesystem::path output(const RenderOptions& options, const std::filesystem::path& path,
                              std::int64_t frame);
 
-/// Every output path that options ask for, `out` first.
+/// Every output path that options ask for, `out` first (when set: Python's render() may write none).
 std::vector<std::filesystem::path> outputs(const RenderOptions& options);
 
 /// Exit status of a command line that is wrong (as opposed to inputs that are).
 inline constexpr int kUsageError = 2;
 
 /// The options, or the status to exit with at once (0 after --help or --version, kUsageError after a usage
-/// error, its message printed).
+/// error, its message printed to standard error).
 std::variant<RenderOptions, int> parse_render_options(int argc, char** argv);
+/// The same from `arguments` (the program's name first), a usage error's message to `errors`;
+/// without `out_required`, --out may be left out (Python's render() returns the image).
+std::variant<RenderOptions, int> parse_render_options(int argc, char** argv, std::ostream& errors, bool out_required);
+std::variant<RenderOptions, int> parse_render_options(const std::vector<std::string>& arguments,
+                                                      std::ostream& errors, bool out_required);
 
 }  // namespace trs

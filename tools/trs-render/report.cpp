@@ -11,11 +11,12 @@
 #include <vector>
 
 namespace trs {
-namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+namespace {
 
 struct SamplerTimes {
   double mean_ms = 0.0;
@@ -125,7 +126,8 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
   return {
       {"settings",
        {{"scene", options.scene.string()},
-        {"out", output(options, options.out, frame ? frame->frame : 0).string()},
+        {"out", options.out.empty() ? nlohmann::json(nullptr)
+                                    : nlohmann::json(output(options, options.out, frame ? frame->frame : 0).string())},
         {"frames", options.frames ? nlohmann::json(std::to_string(options.frames->first) + ":" +
                                                    std::to_string(options.frames->last))
                                   : nlohmann::json()},

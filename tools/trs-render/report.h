@@ -28,6 +28,9 @@ class ProgressBar {
   std::optional<double> budget_;
 };
 
+/// Seconds from `start` to now.
+double seconds_since(std::chrono::steady_clock::time_point start);
+
 /// Mean over pixels of the per-sample luminance variance relative to the squared mean (plus
 /// 0.01, relMSE's usual guard against dark pixels): the noise of one sample per pixel.
 double relative_variance(const tracer::RenderResult& result);

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "luminance.h"
@@ -97,6 +99,16 @@ struct Renderer::State {
   Emitters emitters;
   std::unique_ptr<LightStrategy> strategy;
   PinholeCamera camera;
+  /// The frames rendered so far of this animation frame; render() starts it again.
+  struct Sums {
+    Accumulator pixels;
+    std::vector<LightFrame> light_frames;
+    unsigned frames = 0;
+    double seconds = 0.0;
+    std::uint64_t rays = 0;
+    std::uint64_t invalid_paths = 0;
+  };
+  std::optional<Sums> sums;
 
   State(const Scene& s, const RenderSettings& r, std::int64_t f)
       : scene(s),
@@ -125,6 +137,7 @@ void Renderer::set_deadline(std::optional<Clock::time_point> deadline) { state_-
 EmissionUpdate Renderer::set_frame(std::int64_t frame) {
   State& s = *state_;
   s.frame = frame;
+  s.sums.reset();
   EmissionUpdate update = s.emitters.set_frame(frame, double(frame) / s.settings.fps);
   if (update.changed()) {
     const auto start = Clock::now();
@@ -140,6 +153,12 @@ Renderer::~Renderer() = default;
 
 RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& progress,
                               const std::atomic<bool>& cancel) {
+  state_->sums.reset();
+  return render_more(state_->settings.spp, progress, cancel);
+}
+
+RenderResult Renderer::render_more(unsigned count, const std::function<void(unsigned, unsigned)>& progress,
+                                   const std::atomic<bool>& cancel) {
   State& s = *state_;
   const RenderSettings& settings = s.settings;
   std::optional<tbb::global_control> limit;
@@ -150,20 +169,20 @@ RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& pro
                           connection_candidates(settings.strategy));
   const std::uint64_t frame_seed = settings.seed ^ lightsampler::mix64(std::uint64_t(s.frame));
   const lightsampler::PhiloxKey key = path_key(frame_seed);
+  if (!s.sums) s.sums.emplace(State::Sums{Accumulator(pixels), {}, 0, 0.0, 0, 0});
+  State::Sums& sums = *s.sums;
 
-  RenderResult result;
-  result.width = settings.width;
-  result.height = settings.height;
-  result.setup_seconds = s.setup_seconds;
-  result.strategy = s.strategy->name();
-  result.light_device = s.strategy->device();
-  result.light_structure = s.strategy->setup();
-  Accumulator sums(pixels);
   std::vector<PathEstimate> frame(pixels);
   tbb::combinable<std::uint64_t> rays, invalid;
   const auto start = Clock::now();
-
-  for (unsigned f = 0; f < settings.spp && !cancel; ++f) {
+  const unsigned first = sums.frames;
+  const unsigned end = first + std::min(count, std::numeric_limits<unsigned>::max() - first);
+  bool cancelled = false;
+  for (unsigned f = first; f < end; ++f) {
+    if (cancel) {
+      cancelled = true;
+      break;
+    }
     // The light sets of animation frames apart as their paths are: frame 0's are a still's.
     s.strategy->begin_frame(std::uint64_t(s.frame) << 32 | f);
     tbb::parallel_for(
@@ -187,21 +206,36 @@ RenderResult Renderer::render(const std::function<void(unsigned, unsigned)>& pro
             }
           }
         });
-    if (cancel) break;  // a partial frame would bias the average
+    if (cancel) {  // a partial frame would bias the average
+      cancelled = true;
+      break;
+    }
     s.geometry.throw_if_failed();
-    sums.add(frame);
-    result.light_frames.push_back(s.strategy->last_frame());
-    result.frames = f + 1;
-    if (progress) progress(result.frames, settings.spp);
+    sums.pixels.add(frame);
+    sums.light_frames.push_back(s.strategy->last_frame());
+    sums.frames = f + 1;
+    if (progress) progress(f + 1 - first, end - first);
     if (settings.deadline && Clock::now() >= *settings.deadline) break;
   }
+  sums.seconds += seconds_since(start);
+  sums.rays += rays.combine(std::plus<>());
+  sums.invalid_paths += invalid.combine(std::plus<>());
 
-  result.render_seconds = seconds_since(start);
-  result.interrupted = cancel && result.frames < settings.spp;
+  RenderResult result;
+  result.width = settings.width;
+  result.height = settings.height;
+  result.setup_seconds = s.setup_seconds;
+  result.strategy = s.strategy->name();
+  result.light_device = s.strategy->device();
+  result.light_structure = s.strategy->setup();
+  result.frames = sums.frames;
+  result.light_frames = sums.light_frames;
+  result.render_seconds = sums.seconds;
+  result.interrupted = cancelled;
   result.paths = std::uint64_t(result.frames) * pixels;
-  result.rays = rays.combine(std::plus<>());
-  result.invalid_paths = invalid.combine(std::plus<>());
-  sums.finish(result.frames, result);
+  result.rays = sums.rays;
+  result.invalid_paths = sums.invalid_paths;
+  sums.pixels.finish(result.frames, result);
   return result;
 }
 

@@ -78,7 +78,8 @@ class Renderer {
   ~Renderer();
 
   /// Moves to animation frame `frame`: the emission that changes is replaced, and the light
-  /// strategy updates what depends on it. The next render() renders that frame.
+  /// strategy updates what depends on it. The next render() or render_more() renders that frame
+  /// from its first sample.
   EmissionUpdate set_frame(std::int64_t frame);
   /// The instant at or after which the next render() starts no frame (RenderSettings::deadline).
   void set_deadline(std::optional<std::chrono::steady_clock::time_point> deadline);
@@ -88,6 +89,12 @@ class Renderer {
   /// far are returned.
   RenderResult render(const std::function<void(unsigned, unsigned)>& progress,
                       const std::atomic<bool>& cancel);
+  /// Renders `count` frames more (fewer by the deadline or `cancel`, as render() does) after
+  /// those that render() or render_more() rendered of this animation frame, each with the random
+  /// streams render() gives it: the result averages them all, and render_more(1) n times from
+  /// the start equals render() with n spp. `progress` counts this call's frames.
+  RenderResult render_more(unsigned count, const std::function<void(unsigned, unsigned)>& progress,
+                           const std::atomic<bool>& cancel);
 
  private:
   struct State;

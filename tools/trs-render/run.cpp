@@ -1,0 +1,170 @@
+#include "run.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include "report.h"
+#include "scene_io/atomic_file.h"
+#include "scene_io/file_error.h"
+#include "scene_io/image_output.h"
+#include "tracer/gltf_scene.h"
+
+namespace trs {
+namespace {
+
+/// One value per pixel (a variance, a fraction) as a grey RGB image.
+void write_grey(const std::filesystem::path& file, const tracer::RenderResult& result,
+                const std::vector<float>& values) {
+  std::vector<float> grey;
+  grey.reserve(3 * values.size());
+  for (const float v : values) grey.insert(grey.end(), {v, v, v});
+  write_exr(file, result.width, result.height, grey.data());
+}
+
+/// Fails before the render on an output that cannot be created, rather than after it.
+void check_writable(const std::filesystem::path& file) { AtomicFile probe(file); }
+
+/// The outputs of one image: the EXR, then what else the options ask for.
+void write_outputs(const RenderOptions& options, std::int64_t frame, const tracer::RenderResult& result) {
+  if (!options.out.empty()) write_exr(output(options, options.out, frame), result.width, result.height, result.rgb.data());
+  if (options.preview)
+    write_png_preview(output(options, *options.preview, frame), result.width, result.height, result.rgb.data(),
+                      options.exposure);
+  if (options.variance) write_grey(output(options, *options.variance, frame), result, result.luminance_variance);
+  if (options.emitter_mask) write_grey(output(options, *options.emitter_mask, frame), result, result.emitter_fraction);
+}
+
+void warn_about(std::ostream& err, const tracer::RenderResult& result) {
+  if (result.invalid_paths > 0)
+    err << "trs-render: warning: " << result.invalid_paths
+              << " paths gave NaN or infinite radiance and count as black\n";
+  for (const tracer::LightFrame& f : result.light_frames) {
+    if (f.exhausted == 0) continue;
+    err << "trs-render: warning: the light sampler gave up on some lights (rejection "
+                 "limit); the image is biased\n";
+    break;
+  }
+}
+
+/// A deadline `seconds` after `start`.
+std::chrono::steady_clock::time_point after(std::chrono::steady_clock::time_point start, double seconds) {
+  return start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+tracer::Renderer make_renderer(const tracer::Scene& scene, const RenderOptions& options, std::int64_t frame) {
+  try {
+    return tracer::Renderer(scene, options.render, frame);
+  } catch (const std::invalid_argument& e) {
+    throw FileError(options.scene, e.what());
+  }
+}
+
+int render_still(const RenderOptions& options, std::chrono::steady_clock::time_point start, const RunHooks& hooks) {
+  for (const std::filesystem::path& path : outputs(options)) check_writable(path);
+  std::optional<AtomicFile> stats;
+  if (options.stats) stats.emplace(*options.stats);
+
+  const tracer::Scene scene = tracer::load_gltf_scene(options.scene);
+  tracer::Renderer renderer = make_renderer(scene, options, 0);
+  if (options.time_seconds) renderer.set_deadline(after(start, *options.time_seconds));
+  ProgressBar bar(options.progress, options.time_seconds);
+  const tracer::RenderResult result = renderer.render(
+      [&](unsigned done, unsigned total) {
+        bar.update(done, total);
+        if (hooks.on_frame) hooks.on_frame();
+      },
+      hooks.cancel);
+  bar.finish();
+  if (result.frames == 0) {
+    hooks.err << "trs-render: interrupted before the first frame; nothing written\n";
+    return kInterrupted;
+  }
+  write_outputs(options, 0, result);
+  const double wall = seconds_since(start);
+  const nlohmann::json summary = stats_json(options, result, wall);
+  if (stats) {
+    stats->write(summary.dump(2) + "\n");
+    stats->commit();
+  }
+  print_summary(hooks.out, options.out, result, wall);
+  warn_about(hooks.err, result);
+  if (hooks.on_image) hooks.on_image(0, result, summary);
+  if (result.interrupted) {
+    hooks.err << "trs-render: interrupted; saved " << result.frames << " spp\n";
+    return kInterrupted;
+  }
+  return 0;
+}
+
+bool written(const RenderOptions& options, std::int64_t frame) {
+  const auto paths = outputs(options);
+  return std::all_of(paths.begin(), paths.end(),
+                     [&](const std::filesystem::path& path) { return std::filesystem::exists(output(options, path, frame)); });
+}
+
+/// A sequence, frame by frame: each written whole as it is done. Ctrl-C finishes the frame under
+/// way and stops; the frames written stay.
+int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
+  const FrameRange frames = *options.frames;
+  std::vector<std::int64_t> todo;
+  for (std::int64_t f = frames.first; f <= frames.last; ++f)
+    if (!options.resume || !written(options, f)) todo.push_back(f);
+  if (todo.size() < std::size_t(frames.count()))
+    hooks.out << frames.count() - std::int64_t(todo.size()) << " frames already written, " << todo.size() << " to render\n";
+  if (todo.empty()) return 0;
+  for (const std::int64_t f : todo)
+    for (const std::filesystem::path& path : outputs(options)) check_writable(output(options, path, f));
+
+  const tracer::Scene scene = tracer::load_gltf_scene(options.scene);
+  std::optional<tracer::Renderer> renderer;
+  // Every frame's samples count towards the bar; with a time budget, every frame's seconds.
+  const unsigned spp = options.render.spp;
+  ProgressBar bar(options.progress, options.time_seconds
+                                        ? std::optional<double>(*options.time_seconds * double(todo.size()))
+                                        : std::nullopt);
+  const std::atomic<bool> never{false};  // the frame under way always finishes
+  for (std::size_t i = 0; i < todo.size() && !hooks.cancel; ++i) {
+    const auto frame_start = std::chrono::steady_clock::now();
+    SequenceFrame frame{todo[i], double(todo[i]) / options.render.fps, {}};
+    if (renderer)
+      frame.update = renderer->set_frame(frame.frame);
+    else
+      renderer.emplace(make_renderer(scene, options, frame.frame));
+    renderer->set_deadline(options.time_seconds ? std::optional(after(frame_start, *options.time_seconds)) : std::nullopt);
+    const auto done_before = unsigned(i) * spp;
+    const tracer::RenderResult result = renderer->render(
+        [&](unsigned done, unsigned) {
+          bar.update(done_before + done, unsigned(todo.size()) * spp);
+          if (hooks.on_frame) hooks.on_frame();
+        },
+        never);
+    write_outputs(options, frame.frame, result);
+    const double wall = seconds_since(frame_start);
+    const nlohmann::json summary = stats_json(options, result, wall, frame);
+    if (options.stats) {
+      AtomicFile stats(output(options, *options.stats, frame.frame));
+      stats.write(summary.dump(2) + "\n");
+      stats.commit();
+    }
+    bar.finish();
+    print_frame(hooks.out, output(options, options.out, frame.frame), result, frame, wall);
+    warn_about(hooks.err, result);
+    if (hooks.on_image) hooks.on_image(frame.frame, result, summary);
+  }
+  if (hooks.cancel) {
+    hooks.err << "trs-render: interrupted; the frames written stay (--resume renders the rest)\n";
+    return kInterrupted;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int render(const RenderOptions& options, std::chrono::steady_clock::time_point start, const RunHooks& hooks) {
+  return options.frames ? render_sequence(options, hooks) : render_still(options, start, hooks);
+}
+
+}  // namespace trs

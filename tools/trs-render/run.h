@@ -1,0 +1,43 @@
+#pragma once
+// A trs-render run as a function: a still or a sequence rendered and written as the options ask,
+// for the command line and for Python (python/trs_render_module.cpp).
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <ostream>
+
+#include <nlohmann/json.hpp>
+
+#include "options.h"
+#include "tracer/renderer.h"
+
+namespace trs {
+
+/// Exit status of a run that failed, and of one stopped by `cancel` (128 + SIGINT, as shells
+/// report Ctrl-C).
+inline constexpr int kRunFailed = 1;
+inline constexpr int kInterrupted = 130;
+
+struct RunHooks {
+  /// Once true, a still drops the frame under way and keeps the frames done; a sequence
+  /// finishes the frame under way and stops.
+  const std::atomic<bool>& cancel;
+  /// Summaries (trs-render's standard output) and warnings (its standard error).
+  std::ostream& out;
+  std::ostream& err;
+  /// Each image once it is done and written: its animation frame (0 for a still), the result
+  /// and the stats JSON that --stats writes.
+  std::function<void(std::int64_t, const tracer::RenderResult&, const nlohmann::json&)> on_image = {};
+  /// After every frame (sample per pixel) rendered.
+  std::function<void()> on_frame = {};
+};
+
+/// Renders what `options` ask (a still, or the frames of options.frames) from `start`, the
+/// instant a time budget counts from, and writes each output that is set. Returns 0, or
+/// kInterrupted when `cancel` stopped it. Throws FileError on bad input or an output that cannot
+/// be written (before rendering, where it can tell).
+int render(const RenderOptions& options, std::chrono::steady_clock::time_point start, const RunHooks& hooks);
+
+}  // namespace trs
