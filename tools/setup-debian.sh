@@ -19,6 +19,8 @@ packages=(
   libtinygltf-dev libtinyobjloader-dev nlohmann-json3-dev libcli11-dev libstb-dev
   # the noise study (trs-study): arrays, plots, EXR reading
   python3-numpy python3-matplotlib python3-openimageio
+  # the Python modules (lightsampler, trs_render), their tests, and pip install from a checkout
+  pybind11-dev python3-dev python3-pytest python3-venv python3-pip python3-wheel
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing (libFuzzer and the sanitizer runtimes of Clang)

@@ -1,0 +1,267 @@
+// `import trs_render`: the path tracer as a function. Keywords are trs-render's long options
+// (max_depth=4 is --max-depth 4), parsed and checked by the command line's own parser, so that a
+// render from Python is the one trs-render makes with the same settings, bit for bit.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lightsampler/backend.h"
+#include "options.h"
+#include "report.h"
+#include "run.h"
+#include "scene_io/file_error.h"
+#include "tracer/gltf_scene.h"
+#include "tracer/renderer.h"
+
+namespace py = pybind11;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// trs-render's arguments for `scene` and keyword `options`: spp=16 is `--spp 16`, a flag given
+/// True is the flag alone, False or None leaves the option out.
+std::vector<std::string> arguments(const py::object& scene, const py::kwargs& options) {
+  const py::object fspath = py::module_::import("os").attr("fspath");
+  std::vector<std::string> args = {"trs-render", py::str(fspath(scene))};
+  for (const auto& [key, value] : options) {
+    std::string name = "--" + py::str(key).cast<std::string>();
+    for (char& c : name) c = c == '_' ? '-' : c;
+    if (value.is_none() || (py::isinstance<py::bool_>(value) && !value.cast<bool>())) continue;
+    args.push_back(name);
+    if (py::isinstance<py::bool_>(value)) continue;
+    if (py::isinstance<py::float_>(value))
+      args.push_back(py::repr(value));  // the shortest text that reads back as the same double
+    else if (py::hasattr(value, "__fspath__"))
+      args.push_back(py::str(fspath(value)));
+    else
+      args.push_back(py::str(value));
+  }
+  return args;
+}
+
+/// The options, or ValueError with the parser's message.
+trs::RenderOptions parse(const py::object& scene, const py::kwargs& options) {
+  std::ostringstream errors;
+  auto parsed = trs::parse_render_options(arguments(scene, options), errors, false);
+  if (auto* o = std::get_if<trs::RenderOptions>(&parsed)) return std::move(*o);
+  std::string message = errors.str();
+  for (const std::string prefix : {"trs-render: error: "})
+    if (message.starts_with(prefix)) message.erase(0, prefix.size());
+  if (const std::size_t help = message.find("\nRun with --help"); help != std::string::npos) message.erase(help);
+  while (!message.empty() && message.back() == '\n') message.pop_back();
+  throw py::value_error(message.empty() ? "the options ask for nothing to render" : message);
+}
+
+/// `values` (moved, not copied) as a numpy array of `shape`.
+py::array_t<float> array_of(std::vector<float>&& values, std::vector<py::ssize_t> shape) {
+  auto* owned = new std::vector<float>(std::move(values));
+  py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<float>*>(p); });
+  return py::array_t<float>(shape, owned->data(), owner);
+}
+
+py::dict dict_of(const std::string& json) {
+  return py::module_::import("json").attr("loads")(json);
+}
+
+/// Warnings of a run (trs-render's standard error) as Python warnings, one per line.
+void warn(const std::string& text) {
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.starts_with("trs-render: warning: ")) line.erase(0, 21);
+    if (!line.empty()) PyErr_WarnEx(PyExc_RuntimeWarning, line.c_str(), 1);
+  }
+}
+
+/// Ctrl-C in Python while a render runs without the GIL: checked after each frame; the run then
+/// stops as trs-render does on SIGINT, and KeyboardInterrupt is raised once it has saved.
+class InterruptCheck {
+ public:
+  void operator()() {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      error_.emplace();
+      cancel_ = true;
+    }
+  }
+  const std::atomic<bool>& cancel() const { return cancel_; }
+  void raise_if_interrupted() {
+    if (error_) throw std::move(*error_);
+  }
+
+ private:
+  std::atomic<bool> cancel_{false};
+  std::optional<py::error_already_set> error_;
+};
+
+struct Image {
+  std::int64_t frame;
+  tracer::RenderResult result;
+  std::string stats;
+};
+
+py::tuple image_and_stats(Image& image) {
+  tracer::RenderResult& r = image.result;
+  return py::make_tuple(array_of(std::move(r.rgb), {py::ssize_t(r.height), py::ssize_t(r.width), 3}), dict_of(image.stats));
+}
+
+py::object render(const py::object& scene, const py::kwargs& kwargs) {
+  const auto start = Clock::now();
+  const trs::RenderOptions options = parse(scene, kwargs);
+  if (options.plan_chunk) throw py::value_error("--plan prints trs-render commands: run trs-render for it");
+  std::vector<Image> images;
+  std::ostringstream out, err;
+  InterruptCheck interrupt;
+  {
+    py::gil_scoped_release release;
+    trs::render(options, start,
+                {interrupt.cancel(), out, err,
+                 [&](std::int64_t frame, const tracer::RenderResult& result, const nlohmann::json& stats) {
+                   images.push_back({frame, result, stats.dump()});
+                 },
+                 std::ref(interrupt)});
+  }
+  warn(err.str());
+  interrupt.raise_if_interrupted();
+  if (!options.frames) return image_and_stats(images.at(0));
+  py::list sequence;
+  for (Image& image : images) sequence.append(image_and_stats(image));
+  return sequence;
+}
+
+/// Keywords that describe a run of trs-render rather than a renderer.
+const char* const kRunOptions[] = {"out", "stats", "preview", "variance", "emitter_mask", "frames",
+                                   "resume", "plan", "chunk", "time", "exposure"};
+
+/// A renderer driven frame by frame, for notebooks that show the image converge.
+class PyRenderer {
+ public:
+  PyRenderer(const py::object& scene, std::int64_t frame, const py::kwargs& kwargs)
+      : options_(parse(scene, refuse_run_options(kwargs))), frame_(frame) {
+    py::gil_scoped_release release;
+    try {
+      scene_ = std::make_unique<tracer::Scene>(tracer::load_gltf_scene(options_.scene));
+      renderer_.emplace(*scene_, options_.render, frame);
+    } catch (const std::invalid_argument& e) {
+      throw trs::FileError(options_.scene, e.what());
+    }
+  }
+
+  /// Renders `count` frames more (settings' spp by default) and returns the image so far.
+  py::array_t<float> render_frames(std::optional<unsigned> count) {
+    InterruptCheck interrupt;
+    {
+      py::gil_scoped_release release;
+      last_ = renderer_->render_more(count.value_or(options_.render.spp),
+                                     [&](unsigned, unsigned) { interrupt(); }, interrupt.cancel());
+    }
+    interrupt.raise_if_interrupted();
+    return image();
+  }
+
+  void set_frame(std::int64_t frame) {
+    py::gil_scoped_release release;
+    renderer_->set_frame(frame);
+    frame_ = frame;
+    last_ = {};
+  }
+
+  py::array_t<float> image() const { return copy(last_.rgb, 3); }
+  py::array_t<float> variance() const { return copy(last_.luminance_variance, 1); }
+  py::array_t<float> emitter_fraction() const { return copy(last_.emitter_fraction, 1); }
+  unsigned frames() const { return last_.frames; }
+  std::int64_t frame() const { return frame_; }
+
+  py::dict stats() const {
+    trs::SequenceFrame sequence{frame_, double(frame_) / options_.render.fps, {}};
+    return dict_of(trs::stats_json(options_, last_, last_.setup_seconds + last_.render_seconds, sequence).dump());
+  }
+
+ private:
+  static const py::kwargs& refuse_run_options(const py::kwargs& kwargs) {
+    for (const char* name : kRunOptions)
+      if (kwargs.contains(name))
+        throw py::value_error(std::string(name) + " belongs to trs_render.render(); a Renderer renders frame by frame");
+    return kwargs;
+  }
+
+  /// Before the first frame: black, as an image of no samples is.
+  py::array_t<float> copy(const std::vector<float>& values, py::ssize_t channels) const {
+    const auto h = py::ssize_t(options_.render.height), w = py::ssize_t(options_.render.width);
+    std::vector<float> data = values.empty() ? std::vector<float>(std::size_t(h * w * channels), 0.0f) : values;
+    if (channels == 1) return array_of(std::move(data), {h, w});
+    return array_of(std::move(data), {h, w, channels});
+  }
+
+  trs::RenderOptions options_;
+  std::unique_ptr<tracer::Scene> scene_;
+  std::optional<tracer::Renderer> renderer_;
+  tracer::RenderResult last_;
+  std::int64_t frame_;
+};
+
+py::array_t<float> emitter_mask(const py::object& scene, py::kwargs kwargs) {
+  // Only the camera rays' first hits count: no light is sampled, no bounce traced.
+  for (const auto& [key, value] : std::initializer_list<std::pair<const char*, py::object>>{
+           {"strategy", py::str("uniform")}, {"max_depth", py::int_(0)}})
+    if (!kwargs.contains(key)) kwargs[key] = value;
+  PyRenderer renderer(scene, 0, kwargs);
+  renderer.render_frames(std::nullopt);
+  return renderer.emitter_fraction();
+}
+
+}  // namespace
+
+PYBIND11_MODULE(trs_render, m) {
+  m.doc() =
+      "The trs-render path tracer as a function: glTF scenes lit by their emissive textures, "
+      "images as numpy arrays. Keywords are trs-render's long options, with _ for -.";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const trs::FileError& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const lightsampler::VulkanUnavailable& e) {
+      PyErr_SetString(PyExc_RuntimeError, e.what());
+    }
+  });
+
+  m.def("render", &render, py::arg("scene"),
+        "render(scene, **options) -> (image, stats): image float32 (height, width, 3) linear radiance, "
+        "stats the dict that --stats writes. With frames='A:B', a list of (image, stats), one per frame. "
+        "Outputs named by out, preview, stats, variance or emitter_mask are written as trs-render writes them.");
+  m.def("emitter_mask", &emitter_mask, py::arg("scene"),
+        "emitter_mask(scene, **options) -> float32 (height, width): each pixel's fraction of camera "
+        "samples whose first hit is an emitter (spp of them, default 16).");
+
+  py::class_<PyRenderer>(m, "Renderer", "A scene and settings, rendered a frame (one sample per pixel) at a time.")
+      .def(py::init<const py::object&, std::int64_t, const py::kwargs&>(), py::arg("scene"), py::kw_only(),
+           py::arg("frame") = 0,
+           "Renderer(scene, frame=0, **options): trs-render's options, less those of a run (out, stats, "
+           "preview, variance, emitter_mask, frames, resume, plan, chunk, time, exposure).")
+      .def("render_frame", [](PyRenderer& r) { return r.render_frames(1); },
+           "Renders one frame more; returns the mean image so far, float32 (height, width, 3).")
+      .def("render_frames", &PyRenderer::render_frames, py::arg("count") = py::none(),
+           "Renders `count` frames more (spp by default); returns the mean image so far.")
+      .def("set_frame", &PyRenderer::set_frame, py::arg("frame"),
+           "Moves to animation frame `frame`; the next frames start its image afresh.")
+      .def_property_readonly("image", &PyRenderer::image, "the mean image so far, float32 (height, width, 3)")
+      .def_property_readonly("variance", &PyRenderer::variance,
+                             "float32 (height, width): per-sample luminance variance of each pixel")
+      .def_property_readonly("emitter_fraction", &PyRenderer::emitter_fraction,
+                             "float32 (height, width): fraction of camera samples whose first hit is an emitter")
+      .def_property_readonly("frames", &PyRenderer::frames, "frames (samples per pixel) so far")
+      .def_property_readonly("frame", &PyRenderer::frame, "the animation frame")
+      .def("stats", &PyRenderer::stats, "the stats JSON of the frames so far, as a dict");
+}

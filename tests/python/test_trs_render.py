@@ -1,0 +1,113 @@
+"""`import trs_render`: a render from Python equals trs-render's EXR for the same settings, bit for
+bit, whether in one call or frame by frame; options are trs-render's, checked by its parser."""
+
+import json
+import subprocess
+
+import numpy as np
+import OpenImageIO as oiio
+import pytest
+
+import trs_render
+
+TINY = dict(width=32, height=18, spp=3, max_depth=2, lights=2000, seed=5, quiet=True)
+
+
+def scene(scenes):
+    return scenes / "neon-sign" / "neon-sign.gltf"
+
+
+def read_exr(path):
+    image = oiio.ImageInput.open(str(path))
+    pixels = image.read_image("float")
+    image.close()
+    return pixels
+
+
+def cli(exe, scene_file, out, **options):
+    args = [exe, scene_file, "--out", out]
+    for key, value in options.items():
+        args += [f"--{key.replace('_', '-')}"] + ([] if value is True else [str(value)])
+    subprocess.run(args, check=True, capture_output=True)
+
+
+@pytest.mark.parametrize("strategy", ["ris", "trs", "tree", "uniform"])
+def test_render_equals_the_command_line_bit_for_bit(tmp_path, trs_render_exe, scenes, strategy):
+    cli(trs_render_exe, scene(scenes), tmp_path / "cli.exr", strategy=strategy, **TINY)
+    image, stats = trs_render.render(scene(scenes), strategy=strategy, **TINY)
+    assert image.shape == (18, 32, 3) and image.dtype == np.float32
+    assert np.array_equal(image.view(np.uint32), read_exr(tmp_path / "cli.exr").view(np.uint32))
+    assert stats["frames"] == 3 and stats["settings"]["strategy"] == strategy
+
+
+def test_another_seed_gives_another_image(scenes):
+    """The comparison above can fail: renders of two seeds differ."""
+    a, _ = trs_render.render(scene(scenes), **TINY)
+    b, _ = trs_render.render(scene(scenes), **{**TINY, "seed": 6})
+    assert not np.array_equal(a, b)
+
+
+def test_frame_by_frame_equals_one_render(scenes):
+    options = {k: v for k, v in TINY.items() if k != "spp"}
+    renderer = trs_render.Renderer(scene(scenes), **options)
+    assert renderer.frames == 0 and not renderer.image.any()
+    for _ in range(3):
+        image = renderer.render_frame()
+    assert renderer.frames == 3
+    whole, stats = trs_render.render(scene(scenes), **TINY)
+    assert np.array_equal(image.view(np.uint32), whole.view(np.uint32))
+    assert renderer.variance.shape == renderer.emitter_fraction.shape == (18, 32)
+    assert renderer.stats()["frames"] == 3 and set(renderer.stats()) >= set(stats) - {"frame_seconds"}
+
+
+def test_stats_are_the_stats_json(tmp_path, trs_render_exe, scenes):
+    cli(trs_render_exe, scene(scenes), tmp_path / "cli.exr", stats=tmp_path / "cli.json", **TINY)
+    _, stats = trs_render.render(scene(scenes), **TINY)
+    assert set(stats) == set(json.loads((tmp_path / "cli.json").read_text()))
+
+
+def test_outputs_are_written_as_the_command_line_writes_them(tmp_path, scenes):
+    image, _ = trs_render.render(scene(scenes), out=tmp_path / "a.exr", preview=str(tmp_path / "a.png"),
+                                 stats=tmp_path / "a.json", **TINY)
+    assert np.array_equal(read_exr(tmp_path / "a.exr"), image)
+    assert (tmp_path / "a.png").read_bytes()[:4] == b"\x89PNG"
+    assert json.loads((tmp_path / "a.json").read_text())["frames"] == 3
+
+
+def test_a_sequence_gives_one_image_per_frame(scenes):
+    frames = trs_render.render(scenes / "video-wall" / "video-wall.gltf", frames="0:1", **TINY)
+    assert len(frames) == 2
+    assert [stats["frame"] for _, stats in frames] == [0, 1]
+    assert not np.array_equal(frames[0][0], frames[1][0])
+
+
+def test_emitter_mask_marks_the_emitters_seen(scenes):
+    mask = trs_render.emitter_mask(scene(scenes), width=64, height=36, spp=4)
+    assert mask.shape == (36, 64) and mask.dtype == np.float32
+    assert 0.0 <= mask.min() and mask.max() == 1.0 and 0.0 < mask.mean() < 0.5
+
+
+@pytest.mark.parametrize("options, error, message", [
+    (dict(spp=0), ValueError, "--width, --height and --spp must be at least 1"),
+    (dict(strategy="nope"), ValueError, "--strategy: nope not in"),
+    (dict(colour="red"), ValueError, "--colour"),
+    (dict(candidates=8, strategy="trs"), ValueError, "--candidates belongs to --strategy ris"),
+    (dict(plan=True, frames="0:1"), ValueError, "--plan prints trs-render commands"),
+])
+def test_bad_options_are_refused_with_the_command_line_message(scenes, options, error, message):
+    with pytest.raises(error, match=message):
+        trs_render.render(scene(scenes), **options)
+
+
+def test_bad_scene_is_refused_with_its_name(tmp_path):
+    with pytest.raises(ValueError, match="missing.gltf"):
+        trs_render.render(tmp_path / "missing.gltf", **TINY)
+    bad = tmp_path / "bad.gltf"
+    bad.write_text("{ not json")
+    with pytest.raises(ValueError, match="bad.gltf"):
+        trs_render.Renderer(bad)
+
+
+def test_a_renderer_refuses_the_options_of_a_run(scenes):
+    with pytest.raises(ValueError, match="out belongs to trs_render.render()"):
+        trs_render.Renderer(scene(scenes), out="x.exr")
