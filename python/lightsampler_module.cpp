@@ -212,9 +212,9 @@ class PySampler {
                       read_back, subgroup_reduction, inverse_cdf};
     PyFrame result{FramePool::take(pool_), mesh_};
     {
-      // One frame at a time per sampler; other Python threads run meanwhile.
+      // Other Python threads run meanwhile; calls into this sampler wait their turn.
       py::gil_scoped_release release;
-      std::lock_guard lock(generating_);
+      std::lock_guard lock(busy_);
       sampler_->generate(request, *result.frame);
     }
     return py::cast(std::move(result));
@@ -225,7 +225,7 @@ class PySampler {
       throw py::index_error("update_map: map " + std::to_string(index) + " of " + std::to_string(sampler_->map_count()));
     const ls::DensityMapView view = density_map(map, "update_map", addressing_, scales_[index]);
     py::gil_scoped_release release;
-    std::lock_guard lock(generating_);
+    std::lock_guard lock(busy_);
     sampler_->update_map(index, view);
   }
 
@@ -244,6 +244,7 @@ class PySampler {
     py::array_t<float> out(t.shape(0));
     float* d = out.mutable_data();
     py::gil_scoped_release release;
+    std::lock_guard lock(busy_);
     for (py::ssize_t k = 0; k < t.shape(0); ++k) d[k] = sampler_->density(tri[k], u[k], v[k]);
     return out;
   }
@@ -256,7 +257,7 @@ class PySampler {
   std::shared_ptr<const Mesh> mesh_;
   std::unique_ptr<ls::Sampler> sampler_;
   std::shared_ptr<FramePool> pool_ = std::make_shared<FramePool>();
-  std::mutex generating_;
+  mutable std::mutex busy_;  // one call into the sampler at a time
 };
 
 /// Per sample, the `components` values of `fn(mesh, sample)`, as an (N, components) float32 array.

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Installs the dependencies, builds everything and runs the whole test suite (ctest); then builds
-# the library without its Vulkan backend and runs the tests of that configuration; then builds
+# Installs the dependencies, builds everything and runs the whole test suite (ctest); installs the
+# Python modules with pip into a fresh venv and runs an example; then builds the library without
+# its Vulkan backend and runs the tests of that configuration; then builds
 # everything without OpenImageIO, runs its tests and the GPU report's quick run from its bundle;
 # then builds everything with the sanitizers and runs the tests under them; then fuzzes the
 # parsers of user files for a fixed time each.
@@ -11,6 +12,11 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build
 export LIGHTSAMPLER_REQUIRE_VULKAN=1  # Vulkan tests fail rather than skip without a device
 ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)"
+# The README's Python install line in a fresh venv, offline, then the variance example from it.
+rm -rf build-pip/venv
+/usr/bin/python3 -m venv --system-site-packages build-pip/venv  # Debian's, with its numpy
+build-pip/venv/bin/pip install --no-build-isolation --no-index --quiet .
+(cd build-pip && venv/bin/python ../examples/python/variance.py --quick)
 # The library alone, CPU backend only: it must build, pass its tests and install without Vulkan.
 cmake -S . -B build-cpu-only -G Ninja -DCMAKE_BUILD_TYPE=Release -DLIGHTSAMPLER_VULKAN=OFF \
   -DLIGHTSAMPLER_BUILD_TOOLS=OFF
