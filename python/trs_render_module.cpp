@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -21,6 +22,7 @@
 #include "report.h"
 #include "run.h"
 #include "scene_io/file_error.h"
+#include "scene_io/image_output.h"
 #include "tracer/gltf_scene.h"
 #include "tracer/renderer.h"
 
@@ -221,6 +223,21 @@ py::array_t<float> emitter_mask(const py::object& scene, py::kwargs kwargs) {
   return renderer.emitter_fraction();
 }
 
+/// An image as trs-render's --preview shows it: 8-bit display values.
+py::array_t<std::uint8_t> preview(const py::array_t<float, py::array::c_style | py::array::forcecast>& image,
+                                  float exposure) {
+  if (image.ndim() != 3 || image.shape(2) != 3)
+    throw py::value_error("image: expected shape (height, width, 3)");
+  std::vector<unsigned char> bytes;
+  {
+    py::gil_scoped_release release;
+    bytes = trs::preview_rgb8(image.data(), std::size_t(image.size()), exposure);
+  }
+  py::array_t<std::uint8_t> result({image.shape(0), image.shape(1), py::ssize_t(3)});
+  std::copy(bytes.begin(), bytes.end(), result.mutable_data());
+  return result;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(trs_render, m) {
@@ -244,6 +261,10 @@ PYBIND11_MODULE(trs_render, m) {
   m.def("emitter_mask", &emitter_mask, py::arg("scene"),
         "emitter_mask(scene, **options) -> float32 (height, width): each pixel's fraction of camera "
         "samples whose first hit is an emitter (spp of them, default 16).");
+
+  m.def("preview", &preview, py::arg("image"), py::arg("exposure") = 0.0f,
+        "preview(image, exposure=0) -> uint8 (height, width, 3): linear RGB as --preview shows it "
+        "(scaled by 2^exposure, the display transform, 8 bits).");
 
   py::class_<PyRenderer>(m, "Renderer", "A scene and settings, rendered a frame (one sample per pixel) at a time.")
       .def(py::init<const py::object&, std::int64_t, const py::kwargs&>(), py::arg("scene"), py::kw_only(),

@@ -55,10 +55,7 @@ void write_exr(const std::filesystem::path& file, std::uint32_t width, std::uint
   write_atomically(file, [&] { return image_codec::encode_exr(width, height, rgb); });
 }
 
-void write_png_preview(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
-                       const float* rgb, float exposure) {
-  check_size(file, width, height);
-  const std::size_t count = 3 * std::size_t(width) * height;
+std::vector<unsigned char> preview_rgb8(const float* rgb, std::size_t count, float exposure) {
   const float scale = std::exp2(exposure);
   std::vector<float> display(count);
   std::transform(rgb, rgb + count, display.begin(), [&](float value) { return value * scale; });
@@ -68,7 +65,13 @@ void write_png_preview(const std::filesystem::path& file, std::uint32_t width, s
     const float clamped = value > 0.0f ? std::min(value, 1.0f) : 0.0f;  // NaN fails `> 0`
     return static_cast<unsigned char>(std::lround(clamped * 255.0f));
   });
-  write_png(file, width, height, bytes.data());
+  return bytes;
+}
+
+void write_png_preview(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
+                       const float* rgb, float exposure) {
+  check_size(file, width, height);
+  write_png(file, width, height, preview_rgb8(rgb, 3 * std::size_t(width) * height, exposure).data());
 }
 
 void write_png(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,

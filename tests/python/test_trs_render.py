@@ -74,6 +74,15 @@ def test_outputs_are_written_as_the_command_line_writes_them(tmp_path, scenes):
     assert json.loads((tmp_path / "a.json").read_text())["frames"] == 3
 
 
+def test_preview_is_the_png_the_command_line_writes(tmp_path, scenes):
+    image, _ = trs_render.render(scene(scenes), preview=tmp_path / "a.png", exposure=1.5, **TINY)
+    png = oiio.ImageInput.open(str(tmp_path / "a.png"))
+    written = png.read_image("uint8")
+    png.close()
+    assert np.array_equal(trs_render.preview(image, exposure=1.5), written)
+    assert not np.array_equal(trs_render.preview(image), written)
+
+
 def test_a_sequence_gives_one_image_per_frame(scenes):
     frames = trs_render.render(scenes / "video-wall" / "video-wall.gltf", frames="0:1", **TINY)
     assert len(frames) == 2

@@ -4,6 +4,7 @@
 // written atomically (complete or not at all, like every output of the tools), and images read
 // back as RGB floats (renders to compare, textures).
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -27,8 +28,11 @@ struct Image {
 void write_exr(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
                const float* rgb);
 
-/// Writes linear RGB for viewing: scaled by 2^exposure, encoded for an sRGB display, clamped to
-/// [0, 1] (NaN to 0) and rounded to 8-bit RGB PNG. Throws FileError naming `file`.
+/// Linear RGB (`count` floats) for viewing: scaled by 2^exposure, encoded for an sRGB display,
+/// clamped to [0, 1] (NaN to 0) and rounded to 8 bits.
+std::vector<unsigned char> preview_rgb8(const float* rgb, std::size_t count, float exposure = 0.0f);
+
+/// Writes preview_rgb8 of linear RGB as an 8-bit RGB PNG. Throws FileError naming `file`.
 void write_png_preview(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
                        const float* rgb, float exposure = 0.0f);
 
