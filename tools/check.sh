@@ -1,27 +1,41 @@
 #!/usr/bin/env bash
-# Installs the dependencies, builds everything and runs the whole test suite (ctest); installs the
-# Python modules with pip into a fresh venv and runs an example; then builds the library without
-# its Vulkan backend and runs the tests of that configuration; then builds
-# everything without OpenImageIO, runs its tests and the GPU report's quick run from its bundle;
-# then builds everything with the sanitizers and runs the tests under them; then fuzzes the
-# parsers of user files for a fixed time each.
+# The tests, at two depths.
+#
+#   bash tools/check.sh         installs the dependencies, builds everything in Release and runs the
+#                               whole test suite (ctest); then builds the library alone, without its
+#                               Vulkan backend, and runs that configuration's tests. Minutes.
+#   bash tools/check.sh --full  then also installs the Python modules with pip into a fresh venv and
+#                               runs an example from it; builds everything without OpenImageIO, runs
+#                               its tests and the GPU report's quick run from its bundle; builds
+#                               everything with the sanitizers and runs the tests under them; and
+#                               fuzzes the parsers of user files for a fixed time each. CI runs this.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+case "${1:-}" in
+  "") full=false ;;
+  --full) full=true ;;
+  *) echo "usage: tools/check.sh [--full]" >&2; exit 2 ;;
+esac
+
 bash tools/setup-debian.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build
 export LIGHTSAMPLER_REQUIRE_VULKAN=1  # Vulkan tests fail rather than skip without a device
 ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)"
-# The README's Python install line in a fresh venv, offline, then the variance example from it.
-rm -rf build-pip/venv
-/usr/bin/python3 -m venv --system-site-packages build-pip/venv  # Debian's, with its numpy
-build-pip/venv/bin/pip install --no-build-isolation --no-index --quiet .
-(cd build-pip && venv/bin/python ../examples/python/variance.py --quick)
 # The library alone, CPU backend only: it must build, pass its tests and install without Vulkan.
 cmake -S . -B build-cpu-only -G Ninja -DCMAKE_BUILD_TYPE=Release -DLIGHTSAMPLER_VULKAN=OFF \
   -DLIGHTSAMPLER_BUILD_TOOLS=OFF
 cmake --build build-cpu-only
 ctest --test-dir build-cpu-only --output-on-failure --timeout 600 -j "$(nproc)"
+if ! $full; then
+  exit 0
+fi
+
+# The README's Python install line in a fresh venv, offline, then the variance example from it.
+rm -rf build-pip/venv
+/usr/bin/python3 -m venv --system-site-packages build-pip/venv  # Debian's, with its numpy
+build-pip/venv/bin/pip install --no-build-isolation --no-index --quiet .
+(cd build-pip && venv/bin/python ../examples/python/variance.py --quick)
 # The build without OpenImageIO, which the GPU report carries to machines without the project's
 # packages: its tests, then the report's quick run from its bundle (tools/gpu-report.sh --bundle).
 cmake -S . -B build-noiio -G Ninja -DCMAKE_BUILD_TYPE=Release -DTRS_OPENIMAGEIO=OFF
