@@ -1,23 +1,38 @@
 """trs-study end to end on a tiny study of the neon-sign scene: its plan, its CSV, and each
 image's relMSE against an independent computation (trs-imgdiff's, in C++), with and without the
-emitter mask. Run by ctest with the paths of the tools."""
+emitter mask; and its pictures' choices (bars for a single budget, crops among the lit pixels)
+on made-up results. Run by ctest with the paths of the tools."""
 
 import argparse
 import csv
+import importlib.machinery
+import importlib.util
 import json
+import re
 import shlex
 import subprocess
 import sys
 import tempfile
 import unittest
 from pathlib import Path
+from unittest import mock
 
 TOOLS = None  # set from the command line
 STRATEGIES = ["uniform", "power", "tree", "texel", "tree-texel", "trs", "ris"]  # trs-study's default
+SOURCE_STUDY = Path(__file__).resolve().parents[2] / "tools" / "trs-study" / "trs-study"
 
 
-def study(*args):
-    return subprocess.run([sys.executable, TOOLS.study, *map(str, args)], capture_output=True, text=True)
+def study(*args, program=None):
+    return subprocess.run([sys.executable, program or TOOLS.study, *map(str, args)], capture_output=True, text=True)
+
+
+def study_module():
+    """trs-study imported as a module, for its functions."""
+    sys.dont_write_bytecode = True  # no __pycache__ beside it
+    loader = importlib.machinery.SourceFileLoader("trs_study", str(TOOLS.study))
+    module = importlib.util.module_from_spec(importlib.util.spec_from_loader("trs_study", loader))
+    loader.exec_module(module)
+    return module
 
 
 class Study(unittest.TestCase):
@@ -46,8 +61,15 @@ class Study(unittest.TestCase):
             self.assertEqual((self.out / name).read_bytes()[:8], b"\x89PNG\r\n\x1a\n", name)
         self.assertIn("lit pixels", (self.out / "summary.md").read_text())
         self.assertIn("## Mean over the lit pixels", (self.out / "summary.md").read_text())
-        self.assertIn("](convergence.png)", (self.out / "summary.md").read_text())
-        self.assertIn("](crops.png)", (self.out / "summary.md").read_text())
+        shown = re.findall(r"!\[[^]]*\]\(([^)]+)\)", (self.out / "summary.md").read_text())
+        self.assertEqual(sorted(shown), sorted(p.name for p in self.out.glob("*.png")))
+        self.assertEqual(sorted(shown), ["convergence.png", "crops.png"])
+
+    def test_runs_from_the_source_tree_too(self):
+        before = (self.out / "results.csv").read_text()
+        collected = study("--collect", self.out, program=SOURCE_STUDY)
+        self.assertEqual(collected.returncode, 0, collected.stderr)
+        self.assertEqual((self.out / "results.csv").read_text(), before)
 
     def test_one_row_per_image_with_the_named_columns(self):
         rows = self.rows()
@@ -152,6 +174,79 @@ class LightsSweep(unittest.TestCase):
                              [("trs", 1e3), ("trs", 4e3), ("uniform", 1e3), ("uniform", 4e3)])
             self.assertEqual((out / "lights.png").read_bytes()[:8], b"\x89PNG\r\n\x1a\n")
             self.assertIn("trs, 4000 lights", (out / "summary.md").read_text())
+            self.assertIn("](lights.png)", (out / "summary.md").read_text())
+
+
+class Pictures(unittest.TestCase):
+    """The pictures' choices, on made-up results: a single budget as bars, several as lines; crops
+    among the lit pixels."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.trs_study = study_module()
+
+    @staticmethod
+    def rows(spp, time):
+        """Two strategies, two seeds, a row per render as trs-study draws them."""
+        rows = []
+        for strategy, noise in [("uniform", 1.0), ("trs", 0.1)]:
+            for seed in [1, 2]:
+                budgets = [(n, "", 0.5) for n in spp] + [("", t, t * 1.01) for t in time]
+                for n, t, seconds in budgets:
+                    relmse = noise * seed / (n or 10 * t)
+                    rows.append({"strategy": strategy, "spp": n, "time": t, "seed": seed, "lights": 1e4,
+                                 "seconds": seconds, "relmse_lit": relmse, "worst_relmse_lit": relmse,
+                                 "frame_count": 1})
+        return rows
+
+    def drawn(self, rows):
+        """How convergence.png draws each panel: the units bars() is given, and the x of each line
+        spread() draws."""
+        bar_units, line_xs = [], []
+
+        def bars(axis, series, unit, colours):
+            bar_units.append(unit)
+            original_bars(axis, series, unit, colours)
+
+        def spread(axis, points, label, **style):
+            line_xs.append([x for x, _ in points])
+            return original_spread(axis, points, label, **style)
+
+        original_bars, original_spread = self.trs_study.bars, self.trs_study.spread
+        with tempfile.TemporaryDirectory() as tmp, mock.patch.object(self.trs_study, "bars", bars), \
+                mock.patch.object(self.trs_study, "spread", spread):
+            self.assertEqual(self.trs_study.plot_convergence(Path(tmp), rows), "convergence.png")
+            self.assertEqual((Path(tmp) / "convergence.png").read_bytes()[:8], b"\x89PNG\r\n\x1a\n")
+        return bar_units, line_xs
+
+    def test_a_single_budget_is_drawn_as_bars(self):
+        bar_units, line_xs = self.drawn(self.rows(spp=[2, 4], time=[4.0]))
+        self.assertEqual(bar_units, ["s"])  # the time panel: one budget
+        self.assertEqual(line_xs, [[2, 4], [2, 4]])  # the spp panel: a line per strategy
+        bar_units, line_xs = self.drawn(self.rows(spp=[16], time=[2.0, 8.0]))
+        self.assertEqual(bar_units, ["spp"])
+        self.assertEqual(line_xs, [[2.02, 8.08], [2.02, 8.08]])  # at the seconds spent
+
+    def test_crops_fall_among_the_lit_pixels(self):
+        import numpy as np
+        # An emitter over three quarters of the frame (all but the lower left quarter), seen
+        # through a grid of lit gaps lit brightly by it; the lit quarter dim, but for a bright patch.
+        lit = np.zeros((90, 160), dtype=bool)
+        lit[45:, :80] = True
+        lit[0:90:2, 0:160:2] = True
+        reference = np.full((90, 160, 3), 0.02)
+        reference[lit & ~np.pad(np.ones((45, 80), dtype=bool), ((45, 0), (0, 80)))] = 2.0
+        reference[75:85, 50:70] = 0.5
+        rows, columns = self.trs_study.lit_crop(lit, reference)
+        self.assertEqual((rows.stop - rows.start, columns.stop - columns.start), (30, 53))
+        self.assertGreaterEqual(lit[rows, columns].mean(), 0.9)
+        self.assertTrue(rows.start <= 75 and rows.stop >= 85 and columns.start <= 50 and columns.stop >= 70,
+                        (rows, columns))  # the bright patch, among windows as lit
+
+    def test_nothing_lit_crops_the_centre(self):
+        import numpy as np
+        rows, columns = self.trs_study.lit_crop(np.zeros((90, 160), dtype=bool), np.ones((90, 160, 3)))
+        self.assertEqual((rows, columns), (slice(30, 60), slice(53, 106)))
 
 
 class StrategySpecs(unittest.TestCase):

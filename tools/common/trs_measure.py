@@ -1,0 +1,45 @@
+"""The noise measurement of the Python tools, as trs-imgdiff defines it (tools/trs-imgdiff/main.cpp):
+images read as RGB, relMSE over pixels and channels, and the lit pixels of an emitter mask.
+
+Images are numpy arrays of shape (height, width, 3), float64; a pixel selection is a boolean
+array of shape (height, width). numpy and OpenImageIO's binding are imported on first use, so
+that a tool can import this module for commands that read no image.
+"""
+
+GUARD = 0.01  # added to reference^2: keeps dark pixels from dominating relMSE
+
+
+def read_exr(path):
+    """An OpenEXR image's RGB as float64: a single channel spread to all three, channels past
+    the third (alpha) dropped. Raises OSError with the reader's reason."""
+    import numpy as np
+    import OpenImageIO as oiio
+    image = oiio.ImageInput.open(str(path))
+    if image is None:
+        raise OSError(f"{path}: {oiio.geterror()}")
+    pixels = image.read_image(oiio.FLOAT)
+    image.close()
+    pixels = np.asarray(pixels, dtype=np.float64)
+    if pixels.ndim == 2:
+        pixels = pixels[:, :, None]
+    return np.repeat(pixels[:, :, :1], 3, axis=2) if pixels.shape[2] == 1 else pixels[:, :, :3]
+
+
+def relative_errors(image, reference):
+    """(x - r)^2 / (r^2 + GUARD) per pixel and channel: relMSE's terms."""
+    return (image - reference) ** 2 / (reference ** 2 + GUARD)
+
+
+def relmse(image, reference, pixels=None):
+    """The mean of relative_errors over every channel of the pixels selected (all by default);
+    NaN where none is (trs-imgdiff reports 0 there)."""
+    errors = relative_errors(image, reference)
+    if pixels is None:
+        return float(errors.mean())
+    return float(errors[pixels].mean()) if pixels.any() else float("nan")
+
+
+def lit_pixels(emitter_mask):
+    """The pixels an emitter mask (trs-render --emitter-mask) leaves at zero in its first channel:
+    where no camera sample sees an emitter, and the noise is the light strategy's own."""
+    return emitter_mask[:, :, 0] == 0
