@@ -21,7 +21,7 @@
 #
 # --bundle packs the programs, their libraries (compressed), the validation layer and the Vulkan
 # loader into .device/ for a machine with an NVIDIA driver and nothing else; there, from a copy
-# of the checkout: bash tools/gpu-report.sh --build .device OUT_DIR (README, "The GPU report").
+# of the checkout: bash tools/gpu-report.sh --build .device OUT_DIR (docs/benchmarks.md, "The GPU report").
 # --tables writes OUT_DIR/report.md again from OUT_DIR/data.tar.gz (python3 needed).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
