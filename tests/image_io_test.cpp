@@ -91,6 +91,14 @@ TEST_F(ImageIoTest, ExrRoundTripIsBitExact) {
             (std::vector<float>{0.25f, 0.25f, 0.25f, 4.0f, 4.0f, 4.0f}));
 }
 
+// The renders are linear Rec. 709: the EXR says so, for readers that honour its chromaticities.
+TEST_F(ImageIoTest, ExrIsTaggedRec709WithD65) {
+  const std::vector<float> rgb = {0.5f, 1.0f, 2.0f};
+  trs::write_exr(file("render.exr"), 1, 1, rgb.data());
+  EXPECT_EQ(trs_test::exr_chromaticities(file("render.exr")),
+            (std::vector<float>{0.64f, 0.33f, 0.30f, 0.60f, 0.15f, 0.06f, 0.3127f, 0.3290f}));
+}
+
 TEST_F(ImageIoTest, ReadExrRefusesOtherFormatsAndGarbage) {
   const std::vector<unsigned char> rgb(3, 0);
   trs::write_png(file("image.exr"), 1, 1, rgb.data());  // the name does not make it OpenEXR

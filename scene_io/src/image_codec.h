@@ -8,6 +8,7 @@
 // once, in image_decoding.cpp and image_output.cpp. Decoding takes two steps, header then pixels,
 // so that a header is checked before anything is allocated for its pixels.
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -74,8 +75,13 @@ class Decoder {
   std::unique_ptr<State> state_;
 };
 
-/// A 32-bit float RGB OpenEXR file, ZIP compressed, from 3 floats per pixel (top row first).
-/// Throws CodecError.
+/// The renders' primaries and white point, as OpenEXR's chromaticities attribute stores them
+/// (red, green, blue, white; x then y): Rec. 709 with D65, the tracer's working space.
+inline constexpr std::array<float, 8> kRec709Chromaticities = {0.64f, 0.33f, 0.30f,    0.60f,
+                                                               0.15f, 0.06f, 0.3127f, 0.3290f};
+
+/// A 32-bit float RGB OpenEXR file, ZIP compressed, tagged with kRec709Chromaticities, from 3
+/// floats per pixel (top row first). Throws CodecError.
 std::vector<unsigned char> encode_exr(std::uint32_t width, std::uint32_t height, const float* rgb);
 
 /// An 8-bit RGB PNG file from 3 bytes per pixel (top row first). Throws CodecError.

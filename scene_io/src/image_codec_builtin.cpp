@@ -12,6 +12,7 @@
 #include <ImfMultiPartInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfPartType.h>
+#include <ImfStandardAttributes.h>
 #include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
@@ -280,6 +281,9 @@ std::vector<unsigned char> encode_exr(std::uint32_t width, std::uint32_t height,
   if (width > INT_MAX || height > INT_MAX) throw CodecError("image too large for OpenEXR");
   Imf::Header header(static_cast<int>(width), static_cast<int>(height));
   header.compression() = Imf::ZIP_COMPRESSION;
+  const auto& c = kRec709Chromaticities;
+  Imf::addChromaticities(header, Imf::Chromaticities({c[0], c[1]}, {c[2], c[3]}, {c[4], c[5]},
+                                                     {c[6], c[7]}));
   Imf::FrameBuffer frame;
   const Imath::Box2i window = header.dataWindow();
   const char* const names[] = {"R", "G", "B"};

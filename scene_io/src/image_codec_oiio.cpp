@@ -107,6 +107,8 @@ std::vector<unsigned char> encode_exr(std::uint32_t width, std::uint32_t height,
   OIIO::ImageSpec spec(int(width), int(height), 3, OIIO::TypeDesc::FLOAT);
   spec.attribute("compression", "zip");
   spec.attribute("oiio:ColorSpace", "Linear");
+  spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8),
+                 kRec709Chromaticities.data());
   return encode("openexr", spec, rgb);
 }
 

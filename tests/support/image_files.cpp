@@ -8,6 +8,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfPartType.h>
+#include <ImfStandardAttributes.h>
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
@@ -115,6 +116,13 @@ std::string exr_layout(const std::filesystem::path& file) {
   }
   const bool zip = header.compression() == Imf::ZIP_COMPRESSION;
   return layout + ", " + (zip ? "zip" : "compression " + std::to_string(header.compression()));
+}
+
+std::vector<float> exr_chromaticities(const std::filesystem::path& file) {
+  const Imf::InputFile input(file.c_str());
+  if (!Imf::hasChromaticities(input.header())) return {};
+  const Imf::Chromaticities& c = Imf::chromaticities(input.header());
+  return {c.red.x, c.red.y, c.green.x, c.green.y, c.blue.x, c.blue.y, c.white.x, c.white.y};
 }
 
 void write_deep_exr(const std::filesystem::path& file) {

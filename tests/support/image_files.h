@@ -28,6 +28,10 @@ void write_float_exr(const std::filesystem::path& file, int width, int height, i
 /// An OpenEXR file's channels and compression, as "B:float G:float R:float, zip".
 std::string exr_layout(const std::filesystem::path& file);
 
+/// An OpenEXR file's chromaticities attribute (red, green, blue, white; x then y); empty when it
+/// has none.
+std::vector<float> exr_chromaticities(const std::filesystem::path& file);
+
 /// Writes a 1 x 1 deep OpenEXR image: one pixel with two depth samples.
 void write_deep_exr(const std::filesystem::path& file);
 

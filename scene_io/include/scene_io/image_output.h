@@ -23,8 +23,9 @@ struct Image {
   bool integer = false;
 };
 
-/// Writes linear RGB (3 floats per pixel, top row first) as a 32-bit float OpenEXR file, ZIP
-/// compressed, so that reading it back gives the same floats. Throws FileError naming `file`.
+/// Writes linear Rec. 709 RGB (3 floats per pixel, top row first) as a 32-bit float OpenEXR file,
+/// ZIP compressed, so that reading it back gives the same floats; its chromaticities attribute
+/// says Rec. 709 primaries and D65 white. Throws FileError naming `file`.
 void write_exr(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
                const float* rgb);
 
