@@ -1,8 +1,9 @@
 // Image files in and out of scene_io through the build's image codec (OpenImageIO, or stb_image
-// and OpenEXR: TRS_OPENIMAGEIO): its own EXR and PNG outputs read back, and inputs written
-// without it (support/image_files.h): PNG of every layout, EXR, JPEG, Radiance HDR, deep and
-// truncated files, embedded bytes.
+// and OpenEXR: TRS_OPENIMAGEIO): its own EXR and PNG outputs read back (previews through
+// OpenColorIO display transforms), and inputs written without it (support/image_files.h): PNG of
+// every layout, EXR, JPEG, Radiance HDR, deep and truncated files, embedded bytes.
 
+#include <OpenColorIO/OpenColorABI.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,10 +16,23 @@
 #include <string>
 #include <vector>
 
+#include "scene_io/color.h"
 #include "scene_io/density_io.h"
+#include "scene_io/display.h"
 #include "scene_io/image_output.h"
 #include "support/image_files.h"
+#include "support/ocio_config.h"
 #include "support/scratch_dir.h"
+
+namespace trs {
+
+// For GoogleTest's messages.
+void PrintTo(const DisplayTransform& t, std::ostream* out) {
+  *out << "{config \"" << t.config << "\", colour space \"" << t.colorspace << "\", display \"" << t.display
+       << "\", view \"" << t.view << "\"}";
+}
+
+}  // namespace trs
 
 namespace {
 
@@ -124,6 +138,113 @@ TEST_F(ImageIoTest, PngPreviewIsSrgbEncodedAndClamped) {
   };
   EXPECT_EQ(stored(file("preview.png")), (std::vector<int>{0, 255, 255, 0, 0, 118, 188, 10, 137}));
   EXPECT_EQ(stored(file("brighter.png"))[8], 188);  // 0.25 one stop up is 0.5
+}
+
+// Without a config, the encoder is the sRGB curve of the textures' decoding, inverted.
+TEST_F(ImageIoTest, DisplayEncoderWithoutConfigIsTheSrgbCurve) {
+  const std::vector<float> linear = {-0.5f, 0.0f, 0.001f, 0.0031308f, 0.18f, 0.5f, 1.0f, 3.0f, 100.0f};
+  std::vector<float> curve = linear, encoded = linear;
+  trs::linear_to_srgb(curve);
+  trs::DisplayEncoder(trs::DisplayTransform{}).encode(encoded);
+  EXPECT_EQ(encoded, curve);
+  EXPECT_EQ(trs::DisplayEncoder().transform(), trs::DisplayTransform{});
+}
+
+/// A test with the OpenColorIO config of support/ocio_config.h, written to config.ocio.
+class OcioPreviewTest : public ImageIoTest {
+ protected:
+  fs::path write_config(const std::string& linear, const std::string& aliases = "") {
+    return write_bytes("config.ocio", trs_test::ocio_config(linear, aliases));
+  }
+
+  /// The preview's bytes through `display` of `rgb`, three pixels.
+  std::vector<int> preview(const trs::DisplayEncoder& display, float exposure = 0.0f) {
+    trs::write_png_preview(file("preview.png"), 3, 1, kRgb.data(), exposure, display);
+    return to_bytes(trs::read_image(file("preview.png")).rgb);
+  }
+
+  /// The bytes of the view "Square root": 2^exposure v, its square root, clamped, NaN to 0.
+  static std::vector<int> square_root_bytes(float exposure) {
+    std::vector<int> bytes;
+    for (const float v : kRgb) {
+      const float root = std::sqrt(v * std::exp2(exposure));
+      bytes.push_back(int(std::lround((root > 0.0f ? std::min(root, 1.0f) : 0.0f) * 255.0f)));
+    }
+    return bytes;
+  }
+
+  static inline const std::vector<float> kRgb = {
+      0.0f, 0.01f, 0.18f, 0.25f, 0.7f, 4.0f, -1.0f, std::numeric_limits<float>::quiet_NaN(), 0.03f};
+};
+
+// The default colour space is the config's linear Rec. 709 (here found by its alias), not its
+// scene_linear role (ACEScg); the default display and view are the config's first. Exposure
+// applies before the view.
+TEST_F(OcioPreviewTest, DefaultsAreLinearRec709AndTheDefaultDisplayAndView) {
+  const fs::path config = write_config("Scene Linear", "lin_rec709");
+  const trs::DisplayEncoder display({.config = config.string()});
+  EXPECT_EQ(display.transform(), (trs::DisplayTransform{config.string(), "Scene Linear", "Gamma", "Square root"}));
+  EXPECT_EQ(display.warning(), "");
+  EXPECT_EQ(preview(display), square_root_bytes(0.0f));
+  EXPECT_EQ(preview(display, 1.0f), square_root_bytes(1.0f));
+  EXPECT_NE(square_root_bytes(0.0f), square_root_bytes(1.0f));
+}
+
+// Names given are checked and spelt as the config spells them (a role or alias resolved).
+TEST_F(OcioPreviewTest, NamedDisplayViewAndColourSpace) {
+  const fs::path config = write_config("Linear Rec.709 (sRGB)");
+  std::vector<int> raw;  // the values as they are, clamped
+  for (const float v : kRgb) raw.push_back(int(std::lround((v > 0.0f ? std::min(v, 1.0f) : 0.0f) * 255.0f)));
+  const trs::DisplayEncoder linear({.config = config.string(), .display = "Linear"});
+  EXPECT_EQ(linear.transform().view, "Raw");
+  EXPECT_EQ(preview(linear), raw);
+  const trs::DisplayEncoder gamma_raw({.config = config.string(), .display = "Gamma", .view = "Raw"});
+  EXPECT_EQ(preview(gamma_raw), raw);
+  const trs::DisplayEncoder acescg({.config = config.string(), .colorspace = "scene_linear", .view = "Raw"});
+  EXPECT_EQ(acescg.transform().colorspace, "ACEScg");
+  EXPECT_NE(preview(acescg), raw) << "ACEScg is not Rec. 709";
+}
+
+// A config without a linear Rec. 709 space: its scene_linear role, and a warning naming it.
+TEST_F(OcioPreviewTest, WithoutLinearRec709TheSceneLinearRoleWithAWarning) {
+  const fs::path config = write_config("reference");
+  const trs::DisplayEncoder display({.config = config.string()});
+  EXPECT_EQ(display.transform().colorspace, "ACEScg");
+  EXPECT_NE(display.warning().find(config.string() + ": no colour space for linear Rec. 709"), std::string::npos)
+      << display.warning();
+  EXPECT_NE(display.warning().find("scene_linear role's, \"ACEScg\""), std::string::npos) << display.warning();
+}
+
+// Bad names are refused with the names the config has; the config is named.
+TEST_F(OcioPreviewTest, BadNamesAndConfigsAreRefused) {
+  const fs::path config = write_config("lin_rec709");
+  const auto encoder = [&](trs::DisplayTransform transform) {
+    return [transform] { trs::DisplayEncoder{transform}; };
+  };
+  trs_test::expect_error(encoder({.config = config.string(), .display = "sRGB"}), config,
+                         "no display \"sRGB\" (its displays: \"Gamma\", \"Linear\")");
+  trs_test::expect_error(encoder({.config = config.string(), .display = "Linear", .view = "Square root"}), config,
+                         "no view \"Square root\" (its views: \"Raw\")");
+  trs_test::expect_error(encoder({.config = config.string(), .colorspace = "ACES2065-1"}), config,
+                         "no colour space \"ACES2065-1\" (its colour spaces: \"lin_rec709\", \"ACEScg\", \"gamma 2\")");
+  trs_test::expect_error(encoder({.config = file("absent.ocio").string()}), file("absent.ocio"),
+                         "cannot read the OpenColorIO config");
+  write_bytes("garbage.ocio", "ocio_profile_version: [\n");
+  trs_test::expect_error(encoder({.config = file("garbage.ocio").string()}), file("garbage.ocio"),
+                         "cannot read the OpenColorIO config");
+}
+
+// OpenColorIO 2.2 reads its built-in configs by URI; older versions cannot, and say so.
+TEST_F(OcioPreviewTest, BuiltInConfigs) {
+  const trs::DisplayTransform builtin{.config = "ocio://default"};
+  if (OCIO_VERSION_HEX >= 0x02020000) {
+    const trs::DisplayEncoder display(builtin);
+    EXPECT_EQ(display.transform().colorspace, "Linear Rec.709 (sRGB)");
+    EXPECT_EQ(display.warning(), "");
+  } else {
+    trs_test::expect_error([&] { trs::DisplayEncoder{builtin}; }, "ocio://default",
+                           "built-in configs need OpenColorIO 2.2 or later; this build has " OCIO_VERSION_STR);
+  }
 }
 
 TEST_F(ImageIoTest, FailedWriteLeavesNoFile) {

@@ -1,11 +1,12 @@
 #include "scene_io/color.h"
 
-#include <OpenColorIO/OpenColorIO.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
+
+#include "ocio_apply.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -23,9 +24,11 @@ OCIO::ConstCPUProcessorRcPtr srgb_curve(OCIO::TransformDirection direction) {
       OCIO::OPTIMIZATION_LOSSLESS);
 }
 
+}  // namespace
+
 void apply(const OCIO::CPUProcessor& processor, std::span<float> values) {
   // Whole RGB pixels in parallel blocks (applying a processor is thread-safe), then the one or
-  // two values left over as a padded pixel: the curve treats every channel alike.
+  // two values left over as a padded pixel.
   const std::size_t pixels = values.size() / 3;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pixels, 16384),
                     [&](const tbb::blocked_range<std::size_t>& range) {
@@ -40,8 +43,6 @@ void apply(const OCIO::CPUProcessor& processor, std::span<float> values) {
   processor.applyRGB(pixel.data());
   std::copy_n(pixel.begin(), rest.size(), rest.begin());
 }
-
-}  // namespace
 
 void srgb_to_linear(std::span<float> values) {
   static const OCIO::ConstCPUProcessorRcPtr decode = srgb_curve(OCIO::TRANSFORM_DIR_FORWARD);

@@ -7,7 +7,6 @@
 #include "image_codec.h"
 #include "image_decoding.h"
 #include "scene_io/atomic_file.h"
-#include "scene_io/color.h"
 #include "scene_io/file_error.h"
 
 namespace trs {
@@ -55,13 +54,14 @@ void write_exr(const std::filesystem::path& file, std::uint32_t width, std::uint
   write_atomically(file, [&] { return image_codec::encode_exr(width, height, rgb); });
 }
 
-std::vector<unsigned char> preview_rgb8(const float* rgb, std::size_t count, float exposure) {
+std::vector<unsigned char> preview_rgb8(const float* rgb, std::size_t count, float exposure,
+                                        const DisplayEncoder& display) {
   const float scale = std::exp2(exposure);
-  std::vector<float> display(count);
-  std::transform(rgb, rgb + count, display.begin(), [&](float value) { return value * scale; });
-  linear_to_srgb(display);
+  std::vector<float> encoded(count);
+  std::transform(rgb, rgb + count, encoded.begin(), [&](float value) { return value * scale; });
+  display.encode(encoded);
   std::vector<unsigned char> bytes(count);
-  std::transform(display.begin(), display.end(), bytes.begin(), [](float value) {
+  std::transform(encoded.begin(), encoded.end(), bytes.begin(), [](float value) {
     const float clamped = value > 0.0f ? std::min(value, 1.0f) : 0.0f;  // NaN fails `> 0`
     return static_cast<unsigned char>(std::lround(clamped * 255.0f));
   });
@@ -69,9 +69,9 @@ std::vector<unsigned char> preview_rgb8(const float* rgb, std::size_t count, flo
 }
 
 void write_png_preview(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
-                       const float* rgb, float exposure) {
+                       const float* rgb, float exposure, const DisplayEncoder& display) {
   check_size(file, width, height);
-  write_png(file, width, height, preview_rgb8(rgb, 3 * std::size_t(width) * height, exposure).data());
+  write_png(file, width, height, preview_rgb8(rgb, 3 * std::size_t(width) * height, exposure, display).data());
 }
 
 void write_png(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,

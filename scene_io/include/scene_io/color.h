@@ -2,13 +2,15 @@
 // Colour encodings, through OpenColorIO: the one place that knows the sRGB transfer curve.
 // Textures and density maps stored as 8- or 16-bit integers are sRGB-encoded (glTF says so for
 // colour textures; most painted maps are), renders are linear Rec. 709, previews are shown on
-// sRGB displays. sRGB and Rec. 709 share their primaries, so both directions are the curve alone.
+// sRGB displays unless a config says otherwise (display.h). sRGB and Rec. 709 share their
+// primaries, so both directions are the curve alone.
 //
 // The processors are built from a raw OpenColorIO config with the IEC 61966-2-1 piecewise curve
 // (an ExponentWithLinearTransform: gamma 2.4, offset 0.055). The config named by the OCIO
-// environment variable is deliberately not consulted: the tracer's contract is linear Rec. 709
-// and glTF fixes texture encodings, whereas a studio config's scene_linear role (often ACEScg)
-// would silently change the primaries, and results would depend on the user's environment.
+// environment variable is deliberately not consulted here: the tracer's contract is linear
+// Rec. 709 and glTF fixes texture encodings, whereas a studio config's scene_linear role (often
+// ACEScg) would silently change the primaries, and renders would depend on the user's
+// environment. A user's config changes the previews only (display.h).
 
 #include <span>
 

@@ -1,6 +1,6 @@
 #pragma once
 // RGB images in and out of the tools, through the build's image codec (OpenImageIO, or stb_image
-// and OpenEXR: TRS_OPENIMAGEIO): the renderer's linear EXR outputs and their sRGB PNG previews,
+// and OpenEXR: TRS_OPENIMAGEIO): the renderer's linear EXR outputs and their PNG previews,
 // written atomically (complete or not at all, like every output of the tools), and images read
 // back as RGB floats (renders to compare, textures).
 
@@ -11,6 +11,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "scene_io/display.h"
 
 namespace trs {
 
@@ -29,13 +31,15 @@ struct Image {
 void write_exr(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
                const float* rgb);
 
-/// Linear RGB (`count` floats) for viewing: scaled by 2^exposure, encoded for an sRGB display,
-/// clamped to [0, 1] (NaN to 0) and rounded to 8 bits.
-std::vector<unsigned char> preview_rgb8(const float* rgb, std::size_t count, float exposure = 0.0f);
+/// Linear Rec. 709 RGB (`count` floats) for viewing: scaled by 2^exposure, encoded by `display`
+/// (by default the sRGB curve), clamped to [0, 1] (NaN to 0) and rounded to 8 bits.
+std::vector<unsigned char> preview_rgb8(const float* rgb, std::size_t count, float exposure = 0.0f,
+                                        const DisplayEncoder& display = DisplayEncoder());
 
-/// Writes preview_rgb8 of linear RGB as an 8-bit RGB PNG. Throws FileError naming `file`.
+/// Writes preview_rgb8 of linear Rec. 709 RGB as an 8-bit RGB PNG. Throws FileError naming `file`.
 void write_png_preview(const std::filesystem::path& file, std::uint32_t width, std::uint32_t height,
-                       const float* rgb, float exposure = 0.0f);
+                       const float* rgb, float exposure = 0.0f,
+                       const DisplayEncoder& display = DisplayEncoder());
 
 /// Writes 8-bit RGB display values (3 per pixel, top row first) as they are, for an sRGB display
 /// (OpenImageIO tags the file sRGB; an untagged PNG means the same): a false-colour map, say.
