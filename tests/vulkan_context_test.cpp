@@ -18,6 +18,7 @@
 #include "spirv/iota_comp.h"
 #include "spirv/pass_geom.h"
 #include "spirv/quad_vert.h"
+#include "support/environment.h"
 #include "vulkan_fixture.h"
 
 namespace {
@@ -59,16 +60,6 @@ std::string lower(std::string s) {
   for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
   return s;
 }
-
-// Sets an environment variable for one scope.
-class ScopedEnvironment {
- public:
-  ScopedEnvironment(const char* name, const char* value) : name_(name) { setenv(name, value, 1); }
-  ~ScopedEnvironment() { unsetenv(name_); }
-
- private:
-  const char* name_;
-};
 
 TEST_F(VulkanTest, ListsDevicesWithTheirSuitability) {
   const auto devices = vk::Context::devices();
@@ -117,7 +108,7 @@ TEST_F(VulkanTest, UnknownDeviceIsUnavailableAndListsTheDevices) {
 }
 
 TEST_F(VulkanTest, EnvironmentChoosesTheDeviceUnlessOptionsDo) {
-  const ScopedEnvironment device("LIGHTSAMPLER_VULKAN_DEVICE", "no such device");
+  const trs_test::ScopedEnvironment device("LIGHTSAMPLER_VULKAN_DEVICE", "no such device");
   EXPECT_THROW(vk::Context::create(), vk::Unavailable);
   const auto chosen = vk::Context::create({.device = context->device_name()});
   EXPECT_EQ(chosen->device_name(), context->device_name());
