@@ -144,7 +144,8 @@ py::object render(const py::object& scene, const py::kwargs& kwargs) {
 
 /// Keywords that describe a run of trs-render rather than a renderer.
 const char* const kRunOptions[] = {"out", "stats", "preview", "variance", "emitter_mask", "frames",
-                                   "resume", "plan", "chunk", "time", "exposure"};
+                                   "resume", "plan", "chunk", "time", "exposure", "ocio_config",
+                                   "ocio_colorspace", "display", "view"};
 
 /// A renderer driven frame by frame, for notebooks that show the image converge.
 class PyRenderer {
@@ -270,7 +271,8 @@ PYBIND11_MODULE(trs_render, m) {
       .def(py::init<const py::object&, std::int64_t, const py::kwargs&>(), py::arg("scene"), py::kw_only(),
            py::arg("frame") = 0,
            "Renderer(scene, frame=0, **options): trs-render's options, less those of a run (out, stats, "
-           "preview, variance, emitter_mask, frames, resume, plan, chunk, time, exposure).")
+           "preview, variance, emitter_mask, frames, resume, plan, chunk, time, exposure, ocio_config, "
+           "ocio_colorspace, display, view).")
       .def("render_frame", [](PyRenderer& r) { return r.render_frames(1); },
            "Renders one frame more; returns the mean image so far, float32 (height, width, 3).")
       .def("render_frames", &PyRenderer::render_frames, py::arg("count") = py::none(),

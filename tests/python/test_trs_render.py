@@ -120,3 +120,5 @@ def test_bad_scene_is_refused_with_its_name(tmp_path):
 def test_a_renderer_refuses_the_options_of_a_run(scenes):
     with pytest.raises(ValueError, match="out belongs to trs_render.render()"):
         trs_render.Renderer(scene(scenes), out="x.exr")
+    with pytest.raises(ValueError, match="view belongs to trs_render.render()"):
+        trs_render.Renderer(scene(scenes), view="Filmic")

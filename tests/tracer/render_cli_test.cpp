@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -19,9 +20,11 @@
 #include <thread>
 #include <vector>
 
+#include "scene_io/image_output.h"
+#include "support/environment.h"
 #include "support/gltf_quad.h"
 #include "support/image_files.h"
-#include "scene_io/image_output.h"
+#include "support/ocio_config.h"
 #include "support/subprocess.h"
 
 namespace {
@@ -63,6 +66,10 @@ std::string quad_gltf(const std::string& material, const std::string& extra = ""
 class RenderCliTest : public trs_test::ToolTest {
  protected:
   RenderCliTest() : ToolTest(TRS_RENDER_EXE) {}
+
+  /// The user's OpenColorIO config would change the previews: the runs have none, unless a test
+  /// sets one.
+  trs_test::ScopedEnvironment ocio_{"OCIO", nullptr};
 
   fs::path write_quad_scene(const std::string& name, const std::string& material,
                             const std::string& extra = "") {
@@ -429,6 +436,155 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
     EXPECT_NE(result.err.find("trs-render: error: "), std::string::npos) << result.err;
   }
   EXPECT_EQ(listing(), before);
+}
+
+/// A preview's bytes.
+std::vector<int> preview_bytes(const fs::path& png) {
+  std::vector<int> bytes;
+  for (const float v : trs::read_image(png).rgb) bytes.push_back(int(std::lround(v * 255.0f)));
+  return bytes;
+}
+
+/// The bytes of a preview of `exr` through `view` of its values times 2^exposure, clamped.
+std::vector<int> expected_preview(const trs::Image& exr, float exposure, float (*view)(float)) {
+  std::vector<int> bytes;
+  for (const float v : exr.rgb) {
+    const float shown = view(v * std::exp2(exposure));
+    bytes.push_back(int(std::lround((shown > 0.0f ? std::min(shown, 1.0f) : 0.0f) * 255.0f)));
+  }
+  return bytes;
+}
+
+float raw_view(float v) { return v; }
+float square_root_view(float v) { return std::sqrt(v); }
+
+/// The colour settings of a stats file: config, colour space, display, view.
+std::vector<nlohmann::json> colour_settings(const nlohmann::json& stats) {
+  const nlohmann::json& s = stats["settings"];
+  return {s["ocio_config"], s["ocio_colorspace"], s["display"], s["view"]};
+}
+
+// Without a config the preview is the sRGB curve, as written before configs were read: an empty
+// --ocio-config turns $OCIO off, and $OCIO without a preview is not read at all.
+TEST_F(RenderCliTest, WithoutAConfigThePreviewIsTheSrgbCurve) {
+  const auto render = [&](std::vector<std::string> extra) {
+    for (const char* a : {"--out", "out.exr", "--stats", "out.json"}) extra.push_back(a[0] == '-' ? a : file(a).string());
+    const RunResult result = run(tiny(kScene, extra));
+    EXPECT_EQ(result.status, 0) << result.err;
+    EXPECT_EQ(result.err, "");
+  };
+  render({"--preview", file("out.png").string(), "--exposure", "1.5"});
+  const auto exr = read_render(file("out.exr"), 16, 9);
+  ASSERT_TRUE(exr);
+  trs::write_png_preview(file("expected.png"), 16, 9, exr->rgb.data(), 1.5f);
+  EXPECT_EQ(read_file(file("out.png")), read_file(file("expected.png")));
+  const std::vector<nlohmann::json> none(4, nullptr);
+  EXPECT_EQ(colour_settings(read_json(file("out.json"))), none);
+
+  ocio_.set(write_text("config.ocio", trs_test::ocio_config("lin_rec709")).c_str());
+  render({"--preview", file("off.png").string(), "--exposure", "1.5", "--ocio-config", ""});
+  EXPECT_EQ(read_file(file("off.png")), read_file(file("expected.png")));
+  ocio_.set(file("absent.ocio").c_str());
+  render({});
+  EXPECT_EQ(colour_settings(read_json(file("out.json"))), none);
+}
+
+// $OCIO's config encodes the preview, exposure first; --ocio-config wins over it, from the
+// command line or a settings file; the stats name the transform applied.
+TEST_F(RenderCliTest, PreviewThroughTheOcioConfig) {
+  const fs::path gamma = write_text("gamma.ocio", trs_test::ocio_config("Linear Rec.709 (sRGB)"));
+  const fs::path linear = write_text("linear.ocio", trs_test::ocio_config("lin_rec709", "", true));
+  ocio_.set(gamma.c_str());
+  const auto render = [&](std::vector<std::string> extra) {
+    for (const char* a : {"--out", "out.exr", "--stats", "out.json", "--preview", "out.png"})
+      extra.push_back(a[0] == '-' ? a : file(a).string());
+    const RunResult result = run(tiny(kScene, extra));
+    EXPECT_EQ(result.status, 0) << result.err;
+    EXPECT_EQ(result.err, "");
+    const auto exr = read_render(file("out.exr"), 16, 9);
+    return exr ? *exr : trs::Image{};
+  };
+  trs::Image exr = render({"--exposure", "1"});
+  EXPECT_EQ(preview_bytes(file("out.png")), expected_preview(exr, 1.0f, square_root_view));
+  EXPECT_EQ(colour_settings(read_json(file("out.json"))),
+            (std::vector<nlohmann::json>{gamma.string(), "Linear Rec.709 (sRGB)", "Gamma", "Square root"}));
+
+  exr = render({"--ocio-config", linear.string()});
+  EXPECT_EQ(preview_bytes(file("out.png")), expected_preview(exr, 0.0f, raw_view));
+  EXPECT_EQ(colour_settings(read_json(file("out.json"))),
+            (std::vector<nlohmann::json>{linear.string(), "lin_rec709", "Linear", "Raw"}));
+
+  const fs::path settings =
+      write_text("look.toml", "ocio-config = \"" + linear.string() + "\"\ndisplay = \"Gamma\"\nview = \"Square root\"\n");
+  exr = render({"--settings", settings.string()});
+  EXPECT_EQ(preview_bytes(file("out.png")), expected_preview(exr, 0.0f, square_root_view));
+  EXPECT_EQ(colour_settings(read_json(file("out.json"))),
+            (std::vector<nlohmann::json>{linear.string(), "lin_rec709", "Gamma", "Square root"}));
+}
+
+// Each frame of a sequence is previewed through the config.
+TEST_F(RenderCliTest, SequencePreviewsThroughTheOcioConfig) {
+  ocio_.set(write_text("config.ocio", trs_test::ocio_config("lin_rec709")).c_str());
+  const RunResult result = run(tiny(kAnimated, {"--frames", "0:1", "--out", file("f.%d.exr").string(), "--preview",
+                                                file("f.%d.png").string(), "--view", "Raw"}));
+  ASSERT_EQ(result.status, 0) << result.err;
+  for (const char* frame : {"0", "1"}) {
+    const auto exr = read_render(file(std::string("f.") + frame + ".exr"), 16, 9);
+    ASSERT_TRUE(exr);
+    EXPECT_EQ(preview_bytes(file(std::string("f.") + frame + ".png")), expected_preview(*exr, 0.0f, raw_view));
+  }
+}
+
+// A config without linear Rec. 709: its scene_linear role, with a warning that says how to name
+// the renders' space.
+TEST_F(RenderCliTest, ConfigWithoutLinearRec709Warns) {
+  const fs::path config = write_text("config.ocio", trs_test::ocio_config("reference"));
+  const RunResult result = run(tiny(kScene, {"--out", file("out.exr").string(), "--preview", file("out.png").string(),
+                                             "--ocio-config", config.string()}));
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.err.find("trs-render: warning: " + config.string() + ": no colour space for linear Rec. 709"),
+            std::string::npos)
+      << result.err;
+  EXPECT_NE(result.err.find("--ocio-colorspace"), std::string::npos) << result.err;
+}
+
+// A display, view or colour space without a config ($OCIO is unset) is a usage error.
+TEST_F(RenderCliTest, OcioNamesNeedAConfig) {
+  const std::set<std::string> before = listing();
+  for (const char* option : {"--display", "--view", "--ocio-colorspace"}) {
+    const RunResult result = run(tiny(kScene, {option, "sRGB", "--out", file("out.exr").string(), "--preview",
+                                               file("out.png").string()}));
+    EXPECT_EQ(result.status, 2) << result.err;
+    EXPECT_NE(result.err.find(std::string("trs-render: error: ") + option +
+                              " needs an OpenColorIO config: --ocio-config or $OCIO"),
+              std::string::npos)
+        << result.err;
+  }
+  EXPECT_EQ(listing(), before);
+}
+
+// Names the config lacks, and a config that cannot be read: status 1 before any rendering, the
+// config and the names it has in the message, nothing written.
+TEST_F(RenderCliTest, BadOcioNamesAreRefused) {
+  const fs::path config = write_text("config.ocio", trs_test::ocio_config("lin_rec709"));
+  const std::set<std::string> before = listing();
+  for (const auto& [extra, message] :
+       {std::pair{std::vector<std::string>{"--display", "sRGB"}, "no display \"sRGB\" (its displays: \"Gamma\", \"Linear\")"},
+        std::pair{std::vector<std::string>{"--display", "Linear", "--view", "Filmic"}, "no view \"Filmic\" (its views: \"Raw\")"},
+        std::pair{std::vector<std::string>{"--ocio-colorspace", "ACES2065-1"},
+                  "no colour space \"ACES2065-1\" (its colour spaces: \"lin_rec709\", \"ACEScg\", \"gamma 2\")"}}) {
+    SCOPED_TRACE(message);
+    std::vector<std::string> args = all_outputs();
+    args.insert(args.end(), {"--ocio-config", config.string()});
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult result = run(tiny(kScene, args));
+    EXPECT_EQ(result.status, 1) << result.err;
+    EXPECT_NE(result.err.find("trs-render: error: " + config.string() + ": " + message), std::string::npos)
+        << result.err;
+    EXPECT_EQ(listing(), before);
+  }
+  ocio_.set(file("absent.ocio").c_str());
+  expect_failure_naming(tiny(kScene, all_outputs()), file("absent.ocio"));
 }
 
 // 5b. Animation: a frame range, an image and statistics per frame.

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -66,6 +67,11 @@ class SettingsFile : public CLI::ConfigTOML {
     return items;
   }
 };
+
+std::string environment_variable(const char* name) {
+  const char* value = std::getenv(name);
+  return value ? value : "";
+}
 
 }  // namespace
 
@@ -173,7 +179,9 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv, std
                "array) and render nothing");
   app.add_option("--chunk", chunk, "--plan: frames per command")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_option("--stats", stats, "JSON summary of the run");
-  app.add_option("--preview", preview, "8-bit sRGB PNG preview of the image");
+  app.add_option("--preview", preview,
+                 "8-bit PNG preview of the image: sRGB-encoded, or through an OpenColorIO display and "
+                 "view (--ocio-config)");
   app.add_option("--variance", variance,
                  "OpenEXR of each pixel's per-sample luminance variance (all three channels), "
                  "for noise studies and noise-aware image comparison (trs-imgdiff)");
@@ -181,7 +189,20 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv, std
                  "OpenEXR of each pixel's fraction of camera samples whose first hit is an emitter "
                  "(all three channels): pixels whose noise is the pixel footprint over an emitter, "
                  "the same for every light strategy, to leave out of noise figures");
-  app.add_option("--exposure", options.exposure, "preview exposure, stops")->capture_default_str();
+  app.add_option("--exposure", options.exposure, "preview exposure, stops, applied before the display transform")
+      ->capture_default_str();
+  DisplayTransform& display = options.preview_display;
+  std::string ocio_config;
+  app.add_option("--ocio-config", ocio_config,
+                 "OpenColorIO config of the preview's display transform (default: $OCIO; a built-in "
+                 "config's ocio:// URI needs OpenColorIO 2.2); without one, or empty, the sRGB curve");
+  app.add_option("--ocio-colorspace", display.colorspace,
+                 "the renders' colour space in the config (default: its linear Rec. 709 space by its usual "
+                 "names, lin_rec709 and others, else its scene_linear role)");
+  app.add_option("--display", display.display, "the preview's display in the config (default: its default display)");
+  app.add_option("--view", display.view,
+                 "the preview's view of the display, e.g. a filmic or ACES view that does not clip highlights "
+                 "(default: the display's default view)");
   app.add_flag("--quiet", quiet, "no progress bar");
 
   try {
@@ -239,6 +260,14 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv, std
   for (const char* option : {"--resume", "--plan", "--chunk"}) {
     if (app.count(option) > 0 && !options.frames) {
       errors << "trs-render: error: " << option << " belongs to --frames\n";
+      return kUsageError;
+    }
+  }
+  // As OpenColorIO reads $OCIO, an empty value is none.
+  display.config = app.count("--ocio-config") > 0 ? ocio_config : environment_variable("OCIO");
+  for (const char* option : {"--ocio-colorspace", "--display", "--view"}) {
+    if (app.count(option) > 0 && display.config.empty()) {
+      errors << "trs-render: error: " << option << " needs an OpenColorIO config: --ocio-config or $OCIO\n";
       return kUsageError;
     }
   }

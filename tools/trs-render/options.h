@@ -9,6 +9,7 @@
 #include <variant>
 #include <vector>
 
+#include "scene_io/display.h"
 #include "tracer/renderer.h"
 
 namespace trs {
@@ -32,6 +33,8 @@ struct RenderOptions {
   /// Render until this much wall time has passed since the start, set-up included.
   std::optional<double> time_seconds;
   float exposure = 0.0f;
+  /// The preview's display transform: --ocio-config, else $OCIO (none: the sRGB curve).
+  DisplayTransform preview_display;
   bool progress = true;  ///< a progress bar when standard error is a terminal
   tracer::RenderSettings render;
   /// A sequence: one image per animation frame (each with its own seeds; --spp and --time each).

@@ -112,10 +112,18 @@ nlohmann::json update_json(const tracer::EmissionUpdate& u) {
   return {{"decode", u.decode_ms}, {"upload", u.upload_ms}, {"counting", u.counting_ms}, {"strategy", u.strategy_ms}};
 }
 
+/// A name of the preview's OpenColorIO transform as applied (defaults filled in); null without a
+/// preview or without a config (the sRGB curve).
+nlohmann::json display_setting(const std::optional<DisplayEncoder>& preview, std::string DisplayTransform::*name) {
+  if (!preview || preview->transform().config.empty()) return nullptr;
+  return preview->transform().*name;
+}
+
 }  // namespace
 
 nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResult& result,
-                          double wall_seconds, const std::optional<SequenceFrame>& frame) {
+                          double wall_seconds, const std::optional<SequenceFrame>& frame,
+                          const std::optional<DisplayEncoder>& preview) {
   const tracer::RenderSettings& r = options.render;
   const SamplerTimes sampler = sampler_times(result);
   nlohmann::json ms = nlohmann::json::array();
@@ -147,7 +155,11 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"max_depth", r.max_depth},
         {"threads", r.threads},
         {"backend", lightsampler::to_string(r.sampler.backend)},
-        {"refine", r.sampler.refinement.min_acceptance}}},
+        {"refine", r.sampler.refinement.min_acceptance},
+        {"ocio_config", display_setting(preview, &DisplayTransform::config)},
+        {"ocio_colorspace", display_setting(preview, &DisplayTransform::colorspace)},
+        {"display", display_setting(preview, &DisplayTransform::display)},
+        {"view", display_setting(preview, &DisplayTransform::view)}}},
       {"frames", result.frames},
       {"interrupted", result.interrupted},
       {"frame", frame ? nlohmann::json(frame->frame) : nlohmann::json()},

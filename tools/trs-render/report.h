@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "options.h"
+#include "scene_io/display.h"
 #include "tracer/renderer.h"
 
 namespace trs {
@@ -42,9 +43,11 @@ struct SequenceFrame {
   tracer::EmissionUpdate update;
 };
 
-/// The stats JSON of a still, or of `frame` of a sequence.
+/// The stats JSON of a still, or of `frame` of a sequence; `preview` is the display transform of
+/// the preview written, if any.
 nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResult& result,
-                          double wall_seconds, const std::optional<SequenceFrame>& frame = {});
+                          double wall_seconds, const std::optional<SequenceFrame>& frame = {},
+                          const std::optional<DisplayEncoder>& preview = {});
 
 /// The summary of a still, written to `image`.
 void print_summary(std::ostream& out, const std::filesystem::path& image, const tracer::RenderResult& result,

@@ -8,6 +8,7 @@
 
 #include "report.h"
 #include "scene_io/atomic_file.h"
+#include "scene_io/display.h"
 #include "scene_io/file_error.h"
 #include "scene_io/image_output.h"
 #include "tracer/gltf_scene.h"
@@ -27,12 +28,24 @@ void write_grey(const std::filesystem::path& file, const tracer::RenderResult& r
 /// Fails before the render on an output that cannot be created, rather than after it.
 void check_writable(const std::filesystem::path& file) { AtomicFile probe(file); }
 
-/// The outputs of one image: the EXR, then what else the options ask for.
-void write_outputs(const RenderOptions& options, std::int64_t frame, const tracer::RenderResult& result) {
+/// The preview's display transform, when there is a preview: set up before the render, so that a
+/// config that cannot be read, or a name it lacks, fails the run before any work.
+std::optional<DisplayEncoder> preview_encoder(const RenderOptions& options, std::ostream& err) {
+  if (!options.preview) return std::nullopt;
+  DisplayEncoder display(options.preview_display);
+  if (!display.warning().empty())
+    err << "trs-render: warning: " << display.warning() << " (--ocio-colorspace names the renders' space)\n";
+  return display;
+}
+
+/// The outputs of one image: the EXR, then what else the options ask for (a preview, encoded by
+/// `display`).
+void write_outputs(const RenderOptions& options, const std::optional<DisplayEncoder>& display, std::int64_t frame,
+                   const tracer::RenderResult& result) {
   if (!options.out.empty()) write_exr(output(options, options.out, frame), result.width, result.height, result.rgb.data());
   if (options.preview)
     write_png_preview(output(options, *options.preview, frame), result.width, result.height, result.rgb.data(),
-                      options.exposure);
+                      options.exposure, *display);
   if (options.variance) write_grey(output(options, *options.variance, frame), result, result.luminance_variance);
   if (options.emitter_mask) write_grey(output(options, *options.emitter_mask, frame), result, result.emitter_fraction);
 }
@@ -66,6 +79,7 @@ int render_still(const RenderOptions& options, std::chrono::steady_clock::time_p
   for (const std::filesystem::path& path : outputs(options)) check_writable(path);
   std::optional<AtomicFile> stats;
   if (options.stats) stats.emplace(*options.stats);
+  const std::optional<DisplayEncoder> display = preview_encoder(options, hooks.err);
 
   const tracer::Scene scene = tracer::load_gltf_scene(options.scene);
   tracer::Renderer renderer = make_renderer(scene, options, 0);
@@ -82,9 +96,9 @@ int render_still(const RenderOptions& options, std::chrono::steady_clock::time_p
     hooks.err << "trs-render: interrupted before the first frame; nothing written\n";
     return kInterrupted;
   }
-  write_outputs(options, 0, result);
+  write_outputs(options, display, 0, result);
   const double wall = seconds_since(start);
-  const nlohmann::json summary = stats_json(options, result, wall);
+  const nlohmann::json summary = stats_json(options, result, wall, {}, display);
   if (stats) {
     stats->write(summary.dump(2) + "\n");
     stats->commit();
@@ -117,6 +131,7 @@ int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
   if (todo.empty()) return 0;
   for (const std::int64_t f : todo)
     for (const std::filesystem::path& path : outputs(options)) check_writable(output(options, path, f));
+  const std::optional<DisplayEncoder> display = preview_encoder(options, hooks.err);
 
   const tracer::Scene scene = tracer::load_gltf_scene(options.scene);
   std::optional<tracer::Renderer> renderer;
@@ -141,9 +156,9 @@ int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
           if (hooks.on_frame) hooks.on_frame();
         },
         never);
-    write_outputs(options, frame.frame, result);
+    write_outputs(options, display, frame.frame, result);
     const double wall = seconds_since(frame_start);
-    const nlohmann::json summary = stats_json(options, result, wall, frame);
+    const nlohmann::json summary = stats_json(options, result, wall, frame, display);
     if (options.stats) {
       AtomicFile stats(output(options, *options.stats, frame.frame));
       stats.write(summary.dump(2) + "\n");
