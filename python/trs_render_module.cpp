@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -142,10 +143,12 @@ py::object render(const py::object& scene, const py::kwargs& kwargs) {
   return sequence;
 }
 
-/// Keywords that describe a run of trs-render rather than a renderer.
+/// Keywords of the preview's display transform, which preview() takes too.
+const char* const kDisplayOptions[] = {"ocio_config", "ocio_colorspace", "display", "view"};
+
+/// Keywords that describe a run of trs-render rather than a renderer, besides kDisplayOptions.
 const char* const kRunOptions[] = {"out", "stats", "preview", "variance", "emitter_mask", "frames",
-                                   "resume", "plan", "chunk", "time", "exposure", "ocio_config",
-                                   "ocio_colorspace", "display", "view"};
+                                   "resume", "plan", "chunk", "time", "exposure"};
 
 /// A renderer driven frame by frame, for notebooks that show the image converge.
 class PyRenderer {
@@ -193,9 +196,10 @@ class PyRenderer {
 
  private:
   static const py::kwargs& refuse_run_options(const py::kwargs& kwargs) {
-    for (const char* name : kRunOptions)
-      if (kwargs.contains(name))
-        throw py::value_error(std::string(name) + " belongs to trs_render.render(); a Renderer renders frame by frame");
+    for (const auto& names : {std::span<const char* const>(kRunOptions), std::span<const char* const>(kDisplayOptions)})
+      for (const char* name : names)
+        if (kwargs.contains(name))
+          throw py::value_error(std::string(name) + " belongs to trs_render.render(); a Renderer renders frame by frame");
     return kwargs;
   }
 
@@ -224,15 +228,31 @@ py::array_t<float> emitter_mask(const py::object& scene, py::kwargs kwargs) {
   return renderer.emitter_fraction();
 }
 
+/// The display transform that kDisplayOptions keywords ask for, parsed and checked by
+/// trs-render's parser ($OCIO included); its warning a Python warning.
+trs::DisplayEncoder display_encoder(const py::kwargs& kwargs) {
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = py::str(key);
+    if (std::find(std::begin(kDisplayOptions), std::end(kDisplayOptions), name) == std::end(kDisplayOptions))
+      throw py::type_error("preview() got an unexpected keyword argument '" + name + "'");
+  }
+  const trs::RenderOptions options = parse(py::str("image"), kwargs);  // the parser wants a scene; none is read
+  std::ostringstream err;
+  trs::DisplayEncoder display = trs::display_encoder(options, err);
+  warn(err.str());
+  return display;
+}
+
 /// An image as trs-render's --preview shows it: 8-bit display values.
 py::array_t<std::uint8_t> preview(const py::array_t<float, py::array::c_style | py::array::forcecast>& image,
-                                  float exposure) {
+                                  float exposure, const py::kwargs& kwargs) {
   if (image.ndim() != 3 || image.shape(2) != 3)
     throw py::value_error("image: expected shape (height, width, 3)");
+  const trs::DisplayEncoder display = display_encoder(kwargs);
   std::vector<unsigned char> bytes;
   {
     py::gil_scoped_release release;
-    bytes = trs::preview_rgb8(image.data(), std::size_t(image.size()), exposure);
+    bytes = trs::preview_rgb8(image.data(), std::size_t(image.size()), exposure, display);
   }
   py::array_t<std::uint8_t> result({image.shape(0), image.shape(1), py::ssize_t(3)});
   std::copy(bytes.begin(), bytes.end(), result.mutable_data());
@@ -264,8 +284,9 @@ PYBIND11_MODULE(trs_render, m) {
         "samples whose first hit is an emitter (spp of them, default 16).");
 
   m.def("preview", &preview, py::arg("image"), py::arg("exposure") = 0.0f,
-        "preview(image, exposure=0) -> uint8 (height, width, 3): linear RGB as --preview shows it "
-        "(scaled by 2^exposure, the display transform, 8 bits).");
+        "preview(image, exposure=0, **options) -> uint8 (height, width, 3): linear RGB as --preview shows it "
+        "(scaled by 2^exposure, the display transform, 8 bits); options: ocio_config, ocio_colorspace, "
+        "display, view, as trs-render's.");
 
   py::class_<PyRenderer>(m, "Renderer", "A scene and settings, rendered a frame (one sample per pixel) at a time.")
       .def(py::init<const py::object&, std::int64_t, const py::kwargs&>(), py::arg("scene"), py::kw_only(),

@@ -83,6 +83,37 @@ def test_preview_is_the_png_the_command_line_writes(tmp_path, scenes):
     assert not np.array_equal(trs_render.preview(image), written)
 
 
+# An OpenColorIO config whose one view shows the values as they are.
+RAW_CONFIG = """ocio_profile_version: 2
+roles: {default: lin_rec709, scene_linear: lin_rec709}
+displays:
+  Linear:
+    - !<View> {name: Raw, colorspace: lin_rec709}
+colorspaces:
+  - !<ColorSpace> {name: lin_rec709}
+"""
+
+
+def test_preview_takes_the_display_transform_of_the_command_line(tmp_path, scenes, monkeypatch):
+    config = tmp_path / "raw.ocio"
+    config.write_text(RAW_CONFIG)
+    image, stats = trs_render.render(scene(scenes), preview=tmp_path / "a.png", exposure=1.5, ocio_config=config,
+                                     **TINY)
+    assert stats["settings"]["view"] == "Raw"
+    png = oiio.ImageInput.open(str(tmp_path / "a.png"))
+    written = png.read_image("uint8")
+    png.close()
+    raw = np.rint(np.clip(image * 2.0 ** 1.5, 0.0, 1.0) * 255.0).astype(np.uint8)
+    assert np.array_equal(written, raw)
+    assert np.array_equal(trs_render.preview(image, exposure=1.5, ocio_config=config), raw)
+    monkeypatch.setenv("OCIO", str(config))
+    assert np.array_equal(trs_render.preview(image, exposure=1.5), raw)
+    with pytest.raises(ValueError, match='raw.ocio: no view "Filmic"'):
+        trs_render.preview(image, view="Filmic")
+    with pytest.raises(TypeError, match="unexpected keyword argument 'spp'"):
+        trs_render.preview(image, spp=3)
+
+
 def test_a_sequence_gives_one_image_per_frame(scenes):
     frames = trs_render.render(scenes / "video-wall" / "video-wall.gltf", frames="0:1", **TINY)
     assert len(frames) == 2

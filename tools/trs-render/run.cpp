@@ -32,10 +32,7 @@ void check_writable(const std::filesystem::path& file) { AtomicFile probe(file);
 /// config that cannot be read, or a name it lacks, fails the run before any work.
 std::optional<DisplayEncoder> preview_encoder(const RenderOptions& options, std::ostream& err) {
   if (!options.preview) return std::nullopt;
-  DisplayEncoder display(options.preview_display);
-  if (!display.warning().empty())
-    err << "trs-render: warning: " << display.warning() << " (--ocio-colorspace names the renders' space)\n";
-  return display;
+  return display_encoder(options, err);
 }
 
 /// The outputs of one image: the EXR, then what else the options ask for (a preview, encoded by
@@ -177,6 +174,13 @@ int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
 }
 
 }  // namespace
+
+DisplayEncoder display_encoder(const RenderOptions& options, std::ostream& err) {
+  DisplayEncoder display(options.preview_display);
+  if (!display.warning().empty())
+    err << "trs-render: warning: " << display.warning() << " (--ocio-colorspace names the renders' space)\n";
+  return display;
+}
 
 int render(const RenderOptions& options, std::chrono::steady_clock::time_point start, const RunHooks& hooks) {
   return options.frames ? render_sequence(options, hooks) : render_still(options, start, hooks);

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "options.h"
+#include "scene_io/display.h"
 #include "tracer/renderer.h"
 
 namespace trs {
@@ -33,6 +34,10 @@ struct RunHooks {
   /// After every frame (sample per pixel) rendered.
   std::function<void()> on_frame = {};
 };
+
+/// The preview's display transform that `options` ask for, a warning about it written to `err`.
+/// Throws FileError naming the config (scene_io/display.h).
+DisplayEncoder display_encoder(const RenderOptions& options, std::ostream& err);
 
 /// Renders what `options` ask (a still, or the frames of options.frames) from `start`, the
 /// instant a time budget counts from, and writes each output that is set. Returns 0, or
