@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The main job: installs the dependencies, builds in Release, renders the demo scene (a neon sign
 # lighting a room) with uniform light sampling and with Triangle Rejection Sampling at equal
-# samples per pixel, and prints how much less noisy TRS is against a converged reference. Then
-# samples the demo neon panel with the light sampler alone: TRS against plain rejection sampling.
+# time, prints how much less noisy TRS is against a converged reference and writes
+# build/demo/compare.png, the two and the reference side by side. Then samples the demo neon
+# panel with the light sampler alone: TRS against plain rejection sampling.
 #
 # tools/demo.sh --animation [SECONDS]: the video wall's 48 frames instead, rendered with uniform
 # light sampling and with the default strategy (ris) at equal time per frame (SECONDS, 1.5 by
@@ -24,9 +25,10 @@ if [ "${1:-}" = --animation ]; then
 fi
 
 scene=scenes/neon-sign
+seconds=4  # each render's budget, set-up included
 for strategy in uniform trs; do
-  echo "== render: $strategy =="
-  build/bin/trs-render "$scene/neon-sign.gltf" --settings "$scene/render.toml" \
+  echo "== render: $strategy, $seconds s =="
+  build/bin/trs-render "$scene/neon-sign.gltf" --settings "$scene/render.toml" --time "$seconds" \
     --strategy "$strategy" --out "$out/neon-sign-$strategy.exr" \
     --preview "$out/neon-sign-$strategy.png" --stats "$out/neon-sign-$strategy.json"
   # The noise against the converged reference, over the pixels where no emitter is seen directly.
@@ -34,20 +36,7 @@ for strategy in uniform trs; do
     --mask "$scene/reference-emitter-mask.exr" --json "$out/neon-sign-$strategy-noise.json" > /dev/null
   echo
 done
-python3 - "$out" <<'PY'
-import json, sys
-out = sys.argv[1]
-load = lambda name: json.load(open(f"{out}/neon-sign-{name}.json"))
-uniform, trs = load("uniform"), load("trs")
-noise = load("uniform-noise")["overall"]["relmse"] / load("trs-noise")["overall"]["relmse"]
-time = trs["render_seconds"] / uniform["render_seconds"]
-print(f"At {trs['frames']} spp, against the converged reference (scenes/neon-sign/reference.exr) over "
-      f"the lit pixels, trs is {noise:.1f}x less noisy than uniform (relMSE); it took {time:.2f}x "
-      f"the time, so {noise / time:.1f}x the efficiency.")
-print(f"(Each render's own relative variance per sample, {uniform['relative_variance']:.3g} and "
-      f"{trs['relative_variance']:.3g}, is a self-estimate: it underestimates heavy tails, and is no "
-      f"noise figure.)")
-PY
+PYTHONPATH=build/python /usr/bin/python3 tools/demo/compare.py "$out" "$scene/reference.exr" neon-sign uniform trs
 echo
 
 mesh=scenes/demo/neon-panel.obj

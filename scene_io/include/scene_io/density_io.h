@@ -1,6 +1,6 @@
 #pragma once
 // Density maps from image files (EXR, HDR, PNG, JPEG, TIFF: anything OpenImageIO reads; in a build
-// without it, the formats README's "Set-up" lists).
+// without it, the formats docs/renderer.md, "Images without OpenImageIO", lists).
 
 #include <cstdint>
 #include <filesystem>
