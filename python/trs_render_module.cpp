@@ -156,12 +156,8 @@ class PyRenderer {
   PyRenderer(const py::object& scene, std::int64_t frame, const py::kwargs& kwargs)
       : options_(parse(scene, refuse_run_options(kwargs))), frame_(frame) {
     py::gil_scoped_release release;
-    try {
-      scene_ = std::make_unique<tracer::Scene>(tracer::load_gltf_scene(options_.scene));
-      renderer_.emplace(*scene_, options_.render, frame);
-    } catch (const std::invalid_argument& e) {
-      throw trs::FileError(options_.scene, e.what());
-    }
+    scene_ = std::make_unique<tracer::Scene>(tracer::load_gltf_scene(options_.scene));
+    renderer_.emplace(trs::make_renderer(*scene_, options_, frame));
   }
 
   /// Renders `count` frames more (settings' spp by default) and returns the image so far.

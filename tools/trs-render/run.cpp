@@ -49,12 +49,10 @@ void write_outputs(const RenderOptions& options, const std::optional<DisplayEnco
 
 void warn_about(std::ostream& err, const tracer::RenderResult& result) {
   if (result.invalid_paths > 0)
-    err << "trs-render: warning: " << result.invalid_paths
-              << " paths gave NaN or infinite radiance and count as black\n";
+    err << "trs-render: warning: " << result.invalid_paths << " paths gave NaN or infinite radiance and count as black\n";
   for (const tracer::LightFrame& f : result.light_frames) {
     if (f.exhausted == 0) continue;
-    err << "trs-render: warning: the light sampler gave up on some lights (rejection "
-                 "limit); the image is biased\n";
+    err << "trs-render: warning: the light sampler gave up on some lights (rejection limit); the image is biased\n";
     break;
   }
 }
@@ -62,14 +60,6 @@ void warn_about(std::ostream& err, const tracer::RenderResult& result) {
 /// A deadline `seconds` after `start`.
 std::chrono::steady_clock::time_point after(std::chrono::steady_clock::time_point start, double seconds) {
   return start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
-}
-
-tracer::Renderer make_renderer(const tracer::Scene& scene, const RenderOptions& options, std::int64_t frame) {
-  try {
-    return tracer::Renderer(scene, options.render, frame);
-  } catch (const std::invalid_argument& e) {
-    throw FileError(options.scene, e.what());
-  }
 }
 
 int render_still(const RenderOptions& options, std::chrono::steady_clock::time_point start, const RunHooks& hooks) {
@@ -174,6 +164,14 @@ int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
 }
 
 }  // namespace
+
+tracer::Renderer make_renderer(const tracer::Scene& scene, const RenderOptions& options, std::int64_t frame) {
+  try {
+    return tracer::Renderer(scene, options.render, frame);
+  } catch (const std::invalid_argument& e) {
+    throw FileError(options.scene, e.what());
+  }
+}
 
 DisplayEncoder display_encoder(const RenderOptions& options, std::ostream& err) {
   DisplayEncoder display(options.preview_display);

@@ -39,6 +39,10 @@ struct RunHooks {
 /// Throws FileError naming the config (scene_io/display.h).
 DisplayEncoder display_encoder(const RenderOptions& options, std::ostream& err);
 
+/// The renderer of `scene` with the options' settings at animation frame `frame`; a scene that
+/// cannot be rendered so (its lights emit nothing, say) is a FileError naming options.scene.
+tracer::Renderer make_renderer(const tracer::Scene& scene, const RenderOptions& options, std::int64_t frame);
+
 /// Renders what `options` ask (a still, or the frames of options.frames) from `start`, the
 /// instant a time budget counts from, and writes each output that is set. Returns 0, or
 /// kInterrupted when `cancel` stopped it. Throws FileError on bad input or an output that cannot
