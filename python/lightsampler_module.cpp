@@ -130,20 +130,23 @@ ls::Backend backend(const std::string& name) {
   return choice(name, {ls::Backend::automatic, ls::Backend::cpu, ls::Backend::vulkan}, "backend");
 }
 
-/// refine: "auto" (the tools' default), an acceptance in [0, 1], or 0 / None / False for none.
-ls::Refinement refinement(const py::object& refine) {
-  ls::Refinement r;
-  if (refine.is_none()) return r;
+/// refine: "auto" (the tools' default: the cost model for frames of `frame_samples` samples, the
+/// acceptance rules below kAutoMinAcceptance without them), an acceptance in [0, 1], or 0 / None /
+/// False for none.
+ls::Refinement refinement(const py::object& refine, const py::object& frame_samples) {
+  if (refine.is_none()) return {};
   if (py::isinstance<py::str>(refine)) {
     if (refine.cast<std::string>() != "auto")
       throw py::value_error("refine: 'auto', an acceptance in [0, 1], or None");
-    r.min_acceptance = ls::kAutoMinAcceptance;
-    return r;
+    const double samples = frame_samples.is_none() ? 0.0 : frame_samples.cast<double>();
+    if (!(samples >= 0.0 && std::isfinite(samples)))
+      throw py::value_error("frame_samples: a finite count >= 0, got " + std::to_string(samples));
+    return ls::auto_refinement(samples);
   }
+  if (!frame_samples.is_none()) throw py::value_error("frame_samples belongs to refine='auto'");
   const double value = refine.cast<double>();
   if (!(value >= 0.0 && value <= 1.0)) throw py::value_error("refine: an acceptance in [0, 1], got " + std::to_string(value));
-  r.min_acceptance = float(value);
-  return r;
+  return {.min_acceptance = float(value)};
 }
 
 /// A density map from a float32 (H, W) array; the library copies its texels.
@@ -163,7 +166,8 @@ class PySampler {
  public:
   PySampler(const py::handle& positions, const py::handle& uvs, const py::handle& indices, const py::list& maps,
             const py::object& triangle_maps, const std::string& address, const std::string& backend_name,
-            const py::object& refine, const std::string& device, unsigned threads, const py::object& scales)
+            const py::object& refine, const std::string& device, unsigned threads, const py::object& scales,
+            const py::object& frame_samples)
       : addressing_(addressing(address)) {
     const py::array p = require_array<float>(positions, "positions", {-1, 3});
     const py::array t = require_array<float>(uvs, "uvs", {p.shape(0), 2});
@@ -184,7 +188,7 @@ class PySampler {
     options.backend = backend(backend_name);
     options.cpu.threads = threads;
     options.vulkan.device = device;
-    options.refinement = refinement(refine);
+    options.refinement = refinement(refine, frame_samples);
     ls::MeshView view = mesh->view();
     view.triangle_maps = per_triangle;
     {
@@ -350,14 +354,16 @@ PYBIND11_MODULE(lightsampler, m) {
                         "row 0 at v = 0, nearest texel).")
       .def(py::init<const py::handle&, const py::handle&, const py::handle&, const py::list&, const py::object&,
                     const std::string&, const std::string&, const py::object&, const std::string&, unsigned,
-                    const py::object&>(),
+                    const py::object&, const py::object&>(),
            py::arg("positions"), py::arg("uvs"), py::arg("indices"), py::arg("maps"), py::kw_only(),
            py::arg("triangle_maps") = py::none(), py::arg("addressing") = "wrap", py::arg("backend") = "auto",
            py::arg("refine") = "auto", py::arg("device") = "", py::arg("threads") = 0u,
-           py::arg("scales") = py::none(),
+           py::arg("scales") = py::none(), py::arg("frame_samples") = py::none(),
            "positions float32 (V, 3), uvs float32 (V, 2), indices uint32 (T, 3), maps a list of float32 (H, W); "
            "triangle_maps uint32 (T,) map per triangle (0xffffffff: none; None: all map 0); backend auto, cpu "
-           "or vulkan; refine 'auto', an acceptance in [0, 1] or None; scales one factor per map.")
+           "or vulkan; refine 'auto', an acceptance in [0, 1] or None; scales one factor per map; "
+           "frame_samples, with refine 'auto', the samples a frame will draw, which its subdivision is "
+           "weighed for (None: split below acceptance 0.85).")
       .def("generate", &PySampler::generate, py::kw_only(), py::arg("seed") = 0, py::arg("target_count") = py::none(),
            py::arg("method") = "trs", py::arg("scan") = "auto", py::arg("overlap") = "closed-form",
            py::arg("realize") = true, py::arg("max_tries") = ls::FrameRequest{}.max_tries,

@@ -237,3 +237,95 @@ TEST(Refinement, KeepsASplitThatPaysOnlyOneRoundLater) {
   two_rounds.max_levels = 2;
   EXPECT_EQ(RefinedMesh(mesh.view(), {&view, 1}, two_rounds).levels(), 2u);
 }
+
+// The cost model (Refinement::cost_model, the tools' `auto`).
+
+namespace {
+
+/// Two large triangles under two thin strokes: the sparse case that splitting is for.
+struct Strokes {
+  trs_test::Mesh mesh = trs_test::quad(2, 1, 0, 0, 1, 1);
+  trs_test::Map map{std::vector<float>(128 * 64, 0.0f), 128, 64};
+  Strokes() {
+    for (std::uint32_t x = 10; x < 110; ++x) map.texels[20 * 128 + x] = map.texels[21 * 128 + x] = 1.0f;
+    for (std::uint32_t y = 5; y < 60; ++y) map.texels[y * 128 + 70] = 2.0f;
+  }
+};
+
+/// Expected candidates a frame of `samples` draws on the parts, plus the parts' own work.
+double frame_cost(const RefinedMesh& refined, const DensityMapView& map, double samples, float part_cost) {
+  Frame frame;
+  make_cpu_sampler(refined.view(), {&map, 1})->generate({.seed = 1, .realize = false}, frame);
+  double bound = 0.0;
+  for (std::uint32_t t = 0; t < refined.triangle_count(); ++t)
+    bound += double(frame.max_density[t]) * triangle_area(refined.view(), t);
+  return samples * bound / frame.expected_total + part_cost * refined.triangle_count();
+}
+
+}  // namespace
+
+TEST(RefinementCostModel, SplitsOnlyWhereTheFrameHasSamplesToSave) {
+  // Two triangles, the map bright on its left half and a quarter as bright on its right: an
+  // acceptance of 0.62, so a frame wastes 0.6 candidates a sample. Ten samples cannot pay for
+  // the three parts of a split; a hundred thousand can pay for many.
+  const trs_test::Mesh mesh = trs_test::quad(2, 1, 0, 0, 1, 1);
+  trs_test::Map halves{std::vector<float>(64 * 64, 0.25f), 64, 64};
+  for (std::uint32_t y = 0; y < 64; ++y)
+    for (std::uint32_t x = 0; x < 32; ++x) halves.texels[y * 64 + x] = 1.0f;
+  const DensityMapView view = halves.view();
+  EXPECT_EQ(RefinedMesh(mesh.view(), {&view, 1}, auto_refinement(10)).levels(), 0u);
+  EXPECT_GT(RefinedMesh(mesh.view(), {&view, 1}, auto_refinement(1e5)).levels(), 0u);
+  // Unknown frames: the acceptance rules, as `--refine 0.85` splits.
+  const Strokes strokes;
+  const DensityMapView sparse = strokes.map.view();
+  const RefinedMesh unknown(strokes.mesh.view(), {&sparse, 1}, auto_refinement(0));
+  const RefinedMesh rules(strokes.mesh.view(), {&sparse, 1}, {.min_acceptance = kAutoMinAcceptance});
+  EXPECT_GT(unknown.levels(), 0u);
+  EXPECT_EQ(unknown.triangle_count(), rules.triangle_count());
+}
+
+TEST(RefinementCostModel, PartsGrowWithTheSamplesAndKeepToTheirBudget) {
+  const Strokes strokes;
+  const DensityMapView view = strokes.map.view();
+  std::uint32_t previous = 2;
+  for (double samples : {1e3, 1e4, 1e5}) {
+    const Refinement refinement = auto_refinement(samples);
+    const RefinedMesh refined(strokes.mesh.view(), {&view, 1}, refinement);
+    EXPECT_GE(refined.triangle_count(), previous) << samples;
+    EXPECT_LE(refined.triangle_count(), 2 + refinement.parts_per_sample * samples) << samples;
+    previous = refined.triangle_count();
+  }
+  EXPECT_GT(previous, 100u);
+}
+
+TEST(RefinementCostModel, ItsPartsCostLessThanTheWholeOrOneRoundOfSplits) {
+  // Hypothesis: the kept splits are the cheapest the explored ones allow; in particular cheaper
+  // per frame, as the model counts it, than no subdivision and than a subdivision that splits
+  // every part it tried one round further (the acceptance rules at 0.85, which split blindly).
+  const Strokes strokes;
+  const DensityMapView view = strokes.map.view();
+  for (double samples : {3e3, 3e4, 3e5}) {
+    const Refinement refinement = auto_refinement(samples);
+    const double cost = frame_cost(RefinedMesh(strokes.mesh.view(), {&view, 1}, refinement), view, samples,
+                                   refinement.part_cost);
+    const double whole = frame_cost(RefinedMesh(strokes.mesh.view(), {&view, 1}, {}), view, samples,
+                                    refinement.part_cost);
+    const double blind = frame_cost(RefinedMesh(strokes.mesh.view(), {&view, 1}, kEager), view, samples,
+                                    refinement.part_cost);
+    EXPECT_LT(cost, whole) << samples;
+    EXPECT_LT(cost, blind) << samples;
+  }
+}
+
+TEST(RefinementCostModel, SamplesMatchTheDensity) {
+  int split = 0;
+  for (const Scenario& s : trs_test::scenarios()) {
+    const DensityMapView view = s.map.view();
+    split += RefinedMesh(s.mesh.view(), {&view, 1}, auto_refinement(s.target)).levels() > 0;
+    const Frame frame = generate(*refined_cpu_sampler(s, view, auto_refinement(s.target)), s);
+    const auto result = trs_test::test_per_triangle(s, frame.samples.span());
+    EXPECT_GT(result.dof, 100) << s.name << ": too few cells to have power";
+    EXPECT_TRUE(result.passes(trs_test::kDistributionAlpha)) << s.name << "\n" << result.describe();
+  }
+  EXPECT_GT(split, 0) << "no scenario was split: the test would not see the subdivision";
+}

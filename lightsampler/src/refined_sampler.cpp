@@ -56,6 +56,7 @@ class RefinedSampler final : public Sampler {
   std::string device() const override { return parts_->device(); }
   std::uint64_t triangle_count() const override { return input_.triangles().size(); }
   std::size_t map_count() const override { return input_.maps().size(); }
+  SamplerSetup setup() const override { return {subdivision_ms_, parts_->triangle_count()}; }
 
   // The parts were split for the old map's pattern: on the CPU the next frame splits the mesh
   // again (milliseconds). A new Vulkan backend compiles its pipelines (a third of a second on
@@ -96,8 +97,7 @@ class RefinedSampler final : public Sampler {
       std::span<Sample> samples = frame.samples.span();
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 1 << 14),
                         [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i)
-                            samples[i] = refined_->to_parent(samples[i]);
+                          for (std::size_t i = r.begin(); i < r.end(); ++i) samples[i] = on_its_texel(samples[i]);
                         });
     }
     const std::size_t n = input_.triangles().size();
@@ -112,11 +112,33 @@ class RefinedSampler final : public Sampler {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
 
+  /// A part's sample as the same point of its triangle, on the texel the part read there. A
+  /// point drawn on a texel's edge can round across it when its coordinates change, and would
+  /// then read the density of a texel it was not drawn from (one without any, perhaps): it is
+  /// moved back by a millionth of the triangle, along whichever barycentric axis crosses back.
+  Sample on_its_texel(const Sample& part_sample) const {
+    const Sample s = refined_->to_parent(part_sample);
+    const std::optional<Texel> drawn = parts_->texel(part_sample.triangle, part_sample.b1, part_sample.b2);
+    const auto on_drawn = [&](const Sample& x) {
+      const std::optional<Texel> t = input_.texel(x.triangle, x.b1, x.b2);
+      return !drawn || (t && t->map == drawn->map && t->x == drawn->x && t->y == drawn->y);
+    };
+    if (on_drawn(s)) return s;
+    constexpr float kStep = 0x1p-20f;
+    for (const auto [d1, d2] : {std::pair{kStep, 0.0f}, {-kStep, 0.0f}, {0.0f, kStep}, {0.0f, -kStep}}) {
+      const Sample moved{s.triangle, s.b1 + d1, s.b2 + d2};
+      if (moved.b1 >= 0.0f && moved.b2 >= 0.0f && moved.b1 + moved.b2 <= 1.0f && on_drawn(moved)) return moved;
+    }
+    return s;
+  }
+
   /// Splits the mesh for `maps` and builds the backend over the parts, or over the mesh itself
   /// where nothing is worth splitting (then there is nothing to bring back).
   void refine(std::span<const DensityMapView> maps) {
     parts_.reset();  // the old backend's memory (a GPU's) before the new one's
+    const auto start = std::chrono::steady_clock::now();
     RefinedMesh refined(mesh_.view(), maps, refinement_);
+    subdivision_ms_ = ms_since(start);
     if (refined.levels() == 0) {
       refined_.reset();
       parts_ = backend_(mesh_.view(), maps);
@@ -145,6 +167,7 @@ class RefinedSampler final : public Sampler {
   SamplerFactory backend_;
   std::optional<RefinedMesh> refined_;  ///< none: the backend samples the mesh itself
   std::unique_ptr<Sampler> parts_;
+  double subdivision_ms_ = 0.0;
   bool stale_ = false;
 };
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numeric>
 
 #include "core/counting.h"
 #include "core/host_scene.h"
@@ -39,6 +41,7 @@ struct Measure {
   double bound;       ///< D_T^max times world area: candidates per unit of expected samples, times them
   double acceptance;  ///< mean density over D_T^max; 1 with nothing to sample (no gain in splitting)
   double texels;      ///< area in texels
+  double expected;    ///< the density's integral over the part
 };
 
 double texel_area(const core::TexelTriangle& t) {
@@ -89,34 +92,103 @@ std::vector<bool> splits_that_pay(const std::vector<std::size_t>& tried, const s
   return pays;
 }
 
-}  // namespace
+/// A part the cost model explored, and where its four parts are, if it was split.
+struct Node {
+  Part part;
+  Measure measure;
+  std::uint32_t level;
+  std::size_t first_child = std::numeric_limits<std::size_t>::max();
+  bool explored() const { return first_child != std::numeric_limits<std::size_t>::max(); }
+};
 
-RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> maps,
-                         const Refinement& refinement) {
-  core::validate_mesh(mesh, maps.size());
-  for (std::size_t i = 0; i < maps.size(); ++i) core::validate_map(maps[i], i);
-  std::vector<Part> open(mesh.indices.size() / 3), done, children, next;
-  for (std::uint32_t t = 0; t < open.size(); ++t) open[t] = {t, {{0, 0}, {1, 0}, {0, 1}}};
-  const auto measure = [&](const std::vector<Part>& parts) {
-    build(mesh, parts);
-    const core::HostScene scene(view(), maps);
-    Buffer<double> expected;
-    Buffer<float> max_density;
-    core::count(scene.triangles(), scene.texel_triangles(), scene.maps(), expected, max_density);
-    std::vector<Measure> out(parts.size());
-    for (std::size_t i = 0; i < parts.size(); ++i) {
-      const double bound = double(max_density[i]) * scene.triangles()[i].area;
-      out[i] = {bound, bound > 0.0 ? expected[i] / bound : 1.0, texel_area(scene.texel_triangles()[i])};
+/// The parts of the cost model (Refinement::cost_model). Splits are explored round by round
+/// where a part's wasted candidates (its bound less its integral, in candidates of a frame)
+/// could pay for three more parts, the most wasteful first within the budget of parts; then
+/// every explored split is kept or undone bottom-up, whichever leaves the part and what lies
+/// below it cheaper per frame: candidates drawn plus part_cost per part.
+template <class Measurer>
+std::vector<Part> split_by_cost(const std::vector<Part>& roots, const std::vector<Measure>& measured,
+                                const Refinement& refinement, const Measurer& measure, std::uint32_t& levels) {
+  const double total = std::accumulate(measured.begin(), measured.end(), 0.0,
+                                       [](double sum, const Measure& m) { return sum + m.expected; });
+  if (!(total > 0.0)) return roots;
+  const double candidates_per_bound = refinement.frame_samples / total;
+  const double split_cost = 3.0 * double(refinement.part_cost);
+  const auto wasted = [&](const Measure& m) { return candidates_per_bound * (m.bound - m.expected); };
+  const std::uint64_t room = refinement.max_triangles > roots.size() ? refinement.max_triangles - roots.size() : 0;
+  std::uint64_t budget = std::min<std::uint64_t>(
+      room, std::uint64_t(std::max(0.0, double(refinement.parts_per_sample) * refinement.frame_samples)));
+
+  std::vector<Node> nodes;
+  nodes.reserve(roots.size());
+  for (std::size_t i = 0; i < roots.size(); ++i) nodes.push_back({roots[i], measured[i], 0});
+  std::vector<std::size_t> frontier(nodes.size());
+  std::iota(frontier.begin(), frontier.end(), std::size_t(0));
+  std::vector<Part> children;
+  for (std::uint32_t level = 0; level < refinement.max_levels && !frontier.empty(); ++level) {
+    std::vector<std::size_t> tried;
+    for (std::size_t i : frontier) {
+      const Measure& m = nodes[i].measure;
+      if (m.acceptance < refinement.min_acceptance && m.texels > refinement.min_texels && wasted(m) > split_cost)
+        tried.push_back(i);
     }
-    return out;
-  };
-  const bool refine = refinement.min_acceptance > 0.0f && refinement.max_levels > 0;
-  std::vector<Measure> measured = refine ? measure(open) : std::vector<Measure>{}, child_measured, next_measured;
+    std::stable_sort(tried.begin(), tried.end(), [&](std::size_t a, std::size_t b) {
+      return wasted(nodes[a].measure) > wasted(nodes[b].measure);
+    });
+    tried.resize(std::min<std::uint64_t>(tried.size(), budget / 3));
+    if (tried.empty()) break;
+    budget -= 3 * tried.size();
+    children.clear();
+    for (std::size_t i : tried) split(nodes[i].part, children);
+    const std::vector<Measure> child_measured = measure(children);
+    frontier.clear();
+    for (std::size_t k = 0; k < tried.size(); ++k) {
+      nodes[tried[k]].first_child = nodes.size();
+      for (std::size_t c = 4 * k; c < 4 * k + 4; ++c) {
+        frontier.push_back(nodes.size());
+        nodes.push_back({children[c], child_measured[c], level + 1});
+      }
+    }
+  }
+
+  // Children come after their parent: one pass from the back settles every split.
+  std::vector<double> cost(nodes.size());
+  std::vector<bool> kept(nodes.size(), false);
+  for (std::size_t i = nodes.size(); i-- > 0;) {
+    const Node& n = nodes[i];
+    const double whole = candidates_per_bound * n.measure.bound + refinement.part_cost;
+    double parts = std::numeric_limits<double>::infinity();
+    if (n.explored()) parts = cost[n.first_child] + cost[n.first_child + 1] + cost[n.first_child + 2] + cost[n.first_child + 3];
+    kept[i] = parts < whole;
+    cost[i] = std::min(whole, parts);
+  }
+  std::vector<Part> parts;
+  std::vector<std::size_t> stack;
+  for (std::size_t root = 0; root < roots.size(); ++root) {
+    stack.push_back(root);
+    while (!stack.empty()) {
+      const std::size_t i = stack.back();
+      stack.pop_back();
+      if (!kept[i]) {
+        parts.push_back(nodes[i].part);
+        continue;
+      }
+      levels = std::max(levels, nodes[i].level + 1);
+      for (std::size_t c = 4; c-- > 0;) stack.push_back(nodes[i].first_child + c);
+    }
+  }
+  return parts;
+}
+
+/// The parts of the acceptance rules: every part below min_acceptance is split, round by round,
+/// and a small part's split is kept only where it pays (splits_that_pay).
+template <class Measurer>
+std::vector<Part> split_by_acceptance(std::vector<Part> open, std::vector<Measure> measured,
+                                      const Refinement& refinement, const Measurer& measure, std::uint32_t& levels) {
+  std::vector<Part> done, children, next;
+  std::vector<Measure> child_measured, next_measured;
   std::uint64_t total = open.size();  // parts, counting every split kept so far
-  for (std::uint32_t level = 0; refine && level < refinement.max_levels && !open.empty(); ++level) {
-    // Split every part below the acceptance target, count the children, and keep a split of a
-    // small part only where it pays: its parts must draw min_split_gain times fewer candidates
-    // than the whole.
+  for (std::uint32_t level = 0; level < refinement.max_levels && !open.empty(); ++level) {
     std::vector<std::size_t> tried;
     children.clear();
     for (std::size_t i = 0; i < open.size(); ++i)
@@ -142,15 +214,45 @@ RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> m
     }
     for (std::size_t i = 0; i < open.size(); ++i)
       if (!kept[i]) done.push_back(open[i]);
-    if (!next.empty()) levels_ = level + 1;
+    if (!next.empty()) levels = level + 1;
     open.swap(next);
     measured.swap(next_measured);
   }
   done.insert(done.end(), open.begin(), open.end());
+  return done;
+}
+
+}  // namespace
+
+RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> maps,
+                         const Refinement& refinement) {
+  core::validate_mesh(mesh, maps.size());
+  for (std::size_t i = 0; i < maps.size(); ++i) core::validate_map(maps[i], i);
+  std::vector<Part> parts(mesh.indices.size() / 3);
+  for (std::uint32_t t = 0; t < parts.size(); ++t) parts[t] = {t, {{0, 0}, {1, 0}, {0, 1}}};
+  const auto measure = [&](const std::vector<Part>& tried) {
+    build(mesh, tried);
+    const core::HostScene scene(view(), maps);
+    Buffer<double> expected;
+    Buffer<float> max_density;
+    core::count(scene.triangles(), scene.texel_triangles(), scene.maps(), expected, max_density);
+    std::vector<Measure> out(tried.size());
+    for (std::size_t i = 0; i < tried.size(); ++i) {
+      const double bound = double(max_density[i]) * scene.triangles()[i].area;
+      out[i] = {bound, bound > 0.0 ? expected[i] / bound : 1.0, texel_area(scene.texel_triangles()[i]), expected[i]};
+    }
+    return out;
+  };
+  if (refinement.min_acceptance > 0.0f && refinement.max_levels > 0) {
+    std::vector<Measure> measured = measure(parts);
+    parts = splits_by_cost(refinement) ? split_by_cost(parts, measured, refinement, measure, levels_)
+                                       : split_by_acceptance(std::move(parts), std::move(measured), refinement,
+                                                             measure, levels_);
+  }
   // Parts of one triangle side by side: the sampler walks them in order.
-  std::stable_sort(done.begin(), done.end(),
+  std::stable_sort(parts.begin(), parts.end(),
                    [](const Part& a, const Part& b) { return a.parent < b.parent; });
-  parts_ = std::move(done);
+  parts_ = std::move(parts);
   build(mesh, parts_);
 }
 

@@ -56,25 +56,26 @@ inline const CLI::Validator kFiniteNonNegative(
     "NUMBER >= 0");
 
 /// --refine ACCEPTANCE|auto: the light sampler's adaptive subdivision (lightsampler/refinement.h);
-/// `auto` is lightsampler::kAutoMinAcceptance. The default is what `refinement` holds.
+/// `auto` is its cost model (lightsampler::auto_refinement), which the tool completes with the
+/// samples of its frames. The default is what `refinement` holds.
 inline CLI::Option* add_refine_option(CLI::App& app, lightsampler::Refinement& refinement) {
   const auto text = [](float value) {
     std::ostringstream out;
     out << value;
     return out.str();
   };
-  const std::string current =
-      refinement.min_acceptance == lightsampler::kAutoMinAcceptance ? "auto" : text(refinement.min_acceptance);
+  const std::string current = refinement.cost_model ? "auto" : text(refinement.min_acceptance);
   return app
       .add_option_function<std::string>(
           "--refine",
           [&refinement](const std::string& value) {
-            refinement.min_acceptance = value == "auto" ? lightsampler::kAutoMinAcceptance : std::stof(value);
+            refinement = value == "auto" ? lightsampler::auto_refinement(refinement.frame_samples)
+                                         : lightsampler::Refinement{.min_acceptance = std::stof(value)};
           },
           "split triangles (at most into 4^8 parts, not below " + text(refinement.min_texels) +
-              " texels) while the sampler's "
-          "expected acceptance on them is below this; auto: " + text(lightsampler::kAutoMinAcceptance) +
-              ", measured; 0: sample the mesh as it is")
+              " texels) where the sampler's expected acceptance on them is below this; auto: where the "
+              "candidates a split saves on a frame's samples outweigh its parts' work each frame (below " +
+              text(lightsampler::kAutoMinAcceptance) + "); 0: sample the mesh as it is")
       ->check(CLI::IsMember({"auto"}) | CLI::Range(0.0f, 1.0f))
       ->default_str(current);
 }

@@ -45,7 +45,7 @@ struct ExperimentSettings {
   MeasureSettings measure;
   double scan_target = 1e6;  ///< target of the scan comparison's frames
   /// The samplers' adaptive subdivision: auto by default, 0 for the paper's sampler as it is.
-  lightsampler::Refinement refinement{.min_acceptance = lightsampler::kAutoMinAcceptance};
+  lightsampler::Refinement refinement = lightsampler::auto_refinement(0.0);
 };
 
 /// Every mesh x map x count x variant. A case whose frame time, extrapolated from the previous

@@ -242,6 +242,9 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (quick) apply_quick(app, cl);
+  // auto splits for the largest frames of the run: one subdivision serves every count.
+  if (cl.settings.refinement.cost_model && !cl.settings.counts.empty())
+    cl.settings.refinement.frame_samples = *std::max_element(cl.settings.counts.begin(), cl.settings.counts.end());
 
   try {
     return run(cl);

@@ -104,6 +104,8 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
   }
 
   if (app.count("--count")) options.target_count = count;
+  // auto splits for the frame asked for; without a target the acceptance rules decide.
+  if (options.refinement.cost_model) options.refinement.frame_samples = options.target_count.value_or(0.0);
   options.density_scale = static_cast<float>(scale);
   if (!std::isfinite(options.density_scale)) {
     std::cerr << "trs-sample: error: --density-scale " << scale << " does not fit a float\n";

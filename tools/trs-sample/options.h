@@ -24,7 +24,7 @@ struct Options {
   unsigned threads = 0;
   lightsampler::Backend backend = lightsampler::Backend::automatic;
   std::string device;  ///< Vulkan device by index or name; empty: the default choice
-  lightsampler::Refinement refinement{.min_acceptance = lightsampler::kAutoMinAcceptance};  ///< --refine, auto by default
+  lightsampler::Refinement refinement = lightsampler::auto_refinement(0.0);  ///< --refine, auto by default
   lightsampler::Counting counting = lightsampler::Counting::automatic;
   lightsampler::ScanOrder scan = lightsampler::ScanOrder::automatic;
   lightsampler::Overlap overlap = lightsampler::Overlap::closed_form;

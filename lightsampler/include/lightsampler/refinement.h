@@ -22,12 +22,15 @@
 
 namespace lightsampler {
 
-/// The subdivision's acceptance target that the tools take by default (`--refine auto`).
-/// Measured with trs-bench at 1e8 samples on the CPU backend (docs/benchmarks.md): with the
-/// split gain rule below and its look-ahead, a high target raises the acceptance on sparse
-/// maps from 37% to 65-68% (frames about 45% faster) and costs high-frequency maps about 5% (their
-/// splits near the texel scale do not pay and are not kept).
+/// The acceptance below which the tools' `--refine auto` considers splitting a triangle at all:
+/// above it a split saves at most 15% of its candidates.
 inline constexpr float kAutoMinAcceptance = 0.85f;
+
+/// What a part costs every frame, in the work of one candidate of the rejection loop: its count
+/// copied, rounded, scanned and folded back to its triangle (about 0.4 candidates on the CPU
+/// backend), and the realization's set-up of a triangle that has samples (about 6), measured
+/// and then tuned on the light sampler's frame time in trs-render (docs/benchmarks.md).
+inline constexpr float kPartCost = 8.0f;
 
 struct Refinement {
   /// Split a triangle while its expected acceptance (mean density over D_T^max) is below this.
@@ -51,7 +54,32 @@ struct Refinement {
   std::uint32_t max_levels = 8;
   /// Parts in all at most; beyond it triangles stay as they are.
   std::uint64_t max_triangles = std::uint64_t(1) << 24;
+
+  /// The cost model (the tools' `--refine auto`): a split is kept only where the candidates it
+  /// saves on the samples of a frame outweigh the per-frame work of its three more parts, judged
+  /// over all the rounds of splits below it (a pattern finer than a triangle may pay only a few
+  /// splits down). Only triangles below min_acceptance, above min_texels, whose candidates could
+  /// pay for a split even at full acceptance, are tried; min_split_gain and gain_texels are not
+  /// used. Set-up and per-frame work then scale with the samples a frame draws, not with the
+  /// texels under the mesh.
+  bool cost_model = false;
+  /// Cost model: the samples a frame draws (N_target). 0: not known; the rules above decide.
+  double frame_samples = 0.0;
+  /// Cost model: a part's work each frame, in candidates.
+  float part_cost = kPartCost;
+  /// Cost model: parts added at most per sample a frame draws.
+  float parts_per_sample = 0.5f;
 };
+
+/// The cost model's subdivision (the tools' `--refine auto`) for frames of `frame_samples` samples.
+inline Refinement auto_refinement(double frame_samples) {
+  return {.min_acceptance = kAutoMinAcceptance, .cost_model = true, .frame_samples = frame_samples};
+}
+
+/// Whether `refinement` splits by the cost model (it has the samples of a frame to weigh).
+inline bool splits_by_cost(const Refinement& refinement) {
+  return refinement.cost_model && refinement.frame_samples > 0.0;
+}
 
 /// The subdivided mesh: parts of the caller's triangles, each with its own vertices, and the
 /// way back from a part to its triangle.

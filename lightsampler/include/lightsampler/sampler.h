@@ -129,6 +129,12 @@ struct Frame {
   double total_ms = 0;
 };
 
+/// What building a sampler did, for reports.
+struct SamplerSetup {
+  double subdivision_ms = 0.0;  ///< splitting the mesh (refinement.h), within the construction
+  std::uint64_t parts = 0;      ///< triangles the backend samples: the subdivision's parts, else the mesh's
+};
+
 /// A sampler bound to one mesh and its density maps. Implementations: the CPU backend
 /// (make_cpu_sampler); the Vulkan backend.
 class Sampler {
@@ -140,6 +146,8 @@ class Sampler {
 
   virtual std::uint64_t triangle_count() const = 0;
   virtual std::size_t map_count() const = 0;
+  /// What its construction did (a subdivision's, its latest after a map changed).
+  virtual SamplerSetup setup() const { return {0.0, triangle_count()}; }
 
   /// Replaces density map `index` (size, addressing and scale may change). Throws
   /// std::invalid_argument on a bad map, std::out_of_range on a bad index. N-bar_T and D_T^max
