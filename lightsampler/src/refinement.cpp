@@ -5,9 +5,11 @@
 #include <limits>
 #include <numeric>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/counting.h"
 #include "core/host_scene.h"
-#include "core/validate.h"
 
 namespace lightsampler {
 
@@ -226,21 +228,22 @@ std::vector<Part> split_by_acceptance(std::vector<Part> open, std::vector<Measur
 
 RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> maps,
                          const Refinement& refinement) {
-  core::validate_mesh(mesh, maps.size());
-  for (std::size_t i = 0; i < maps.size(); ++i) core::validate_map(maps[i], i);
+  // The mesh and maps checked, and the maps copied, once; each round counts only its parts.
+  const core::HostScene input(mesh, maps);
   std::vector<Part> parts(mesh.indices.size() / 3);
   for (std::uint32_t t = 0; t < parts.size(); ++t) parts[t] = {t, {{0, 0}, {1, 0}, {0, 1}}};
   const auto measure = [&](const std::vector<Part>& tried) {
     build(mesh, tried);
-    const core::HostScene scene(view(), maps);
-    Buffer<double> expected;
-    Buffer<float> max_density;
-    core::count(scene.triangles(), scene.texel_triangles(), scene.maps(), expected, max_density);
+    const std::vector<core::TriangleRecord> records = core::make_triangle_records(view(), maps.size());
     std::vector<Measure> out(tried.size());
-    for (std::size_t i = 0; i < tried.size(); ++i) {
-      const double bound = double(max_density[i]) * scene.triangles()[i].area;
-      out[i] = {bound, bound > 0.0 ? expected[i] / bound : 1.0, texel_area(scene.texel_triangles()[i]), expected[i]};
-    }
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tried.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
+      for (std::size_t i = r.begin(); i < r.end(); ++i) {
+        const core::TexelTriangle texels = core::make_texel_triangle(records[i], input.maps());
+        const core::TriangleIntegral integral = core::integrate_triangle(records[i], texels, input.maps());
+        const double bound = double(integral.max_density) * records[i].area;
+        out[i] = {bound, bound > 0.0 ? integral.expected / bound : 1.0, texel_area(texels), integral.expected};
+      }
+    });
     return out;
   };
   if (refinement.min_acceptance > 0.0f && refinement.max_levels > 0) {
