@@ -73,7 +73,8 @@ def test_samples_equal_the_cpp_samples_bit_for_bit(tmp_path, trs_sample, backend
                     "--backend", backend, "--out", ply], check=True, capture_output=True)
     cpp = read_ply(ply)
 
-    frame = ls.Sampler(positions, uvs, indices, [texels], backend=backend).generate(
+    # trs-sample's --refine auto weighs its subdivision for the frame it draws, --count samples.
+    frame = ls.Sampler(positions, uvs, indices, [texels], backend=backend, frame_samples=COUNT).generate(
         seed=SEED, target_count=COUNT, method=method)
     assert len(frame) == len(cpp) > 0.9 * COUNT
     ours = np.empty(len(frame), cpp.dtype)
@@ -196,3 +197,19 @@ def test_bad_request_is_refused_with_a_message():
         s.density(np.zeros(2, np.uint32), np.zeros(2), np.zeros(2, np.float32))
     with pytest.raises(ValueError, match="the mesh has 4 triangles"):
         s.density(np.array([4], np.uint32), np.zeros(1, np.float32), np.zeros(1, np.float32))
+
+
+def test_refine_auto_weighs_its_subdivision_for_frame_samples():
+    # The cost model's samples follow the density as any sampler's: the same integrals, and
+    # samples that land only where the density is non-zero.
+    d = density()
+    plain = ls.Sampler(*mesh(), [d], backend="cpu", refine=None).generate(seed=3, target_count=1e4)
+    s = ls.Sampler(*mesh(), [d], backend="cpu", refine="auto", frame_samples=1e4)
+    frame = s.generate(seed=3, target_count=1e4)
+    np.testing.assert_allclose(frame.expected_counts, plain.expected_counts, rtol=1e-6)
+    assert frame.sample_count > 0
+    assert np.all(s.density(*(np.ascontiguousarray(a) for a in (frame.triangles, frame.b1, frame.b2))) > 0)
+    with pytest.raises(ValueError, match="frame_samples belongs to refine='auto'"):
+        ls.Sampler(*mesh(), [d], backend="cpu", refine=0.5, frame_samples=1e4)
+    with pytest.raises(ValueError, match="frame_samples: a finite count"):
+        ls.Sampler(*mesh(), [d], backend="cpu", refine="auto", frame_samples=-1.0)

@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include "lightsampler/refinement.h"
 #include "scene_io/image_output.h"
 #include "support/environment.h"
 #include "support/gltf_quad.h"
@@ -151,7 +152,8 @@ TEST_F(RenderCliTest, RendersEveryStrategy) {
     EXPECT_EQ(settings["max_depth"], 2);
     EXPECT_EQ(settings["threads"], 2);
     EXPECT_EQ(settings["backend"], "cpu");
-    EXPECT_EQ(settings["refine"], 0.5);
+    EXPECT_FLOAT_EQ(settings["refine"].get<float>(), lightsampler::kAutoMinAcceptance);
+    EXPECT_EQ(settings["refine_rule"], "cost");
     EXPECT_EQ(stats["frames"], 2);
     EXPECT_EQ(stats["interrupted"], false);
     EXPECT_GT(stats["wall_seconds"].get<double>(), 0.0);
@@ -358,6 +360,46 @@ TEST_F(RenderCliTest, HandWrittenEmissiveQuadRenders) {
     ASSERT_EQ(result.status, 0) << result.err;
     read_render(file("glow.exr"), 16, 9);
   }
+}
+
+// The set-up by part in the stats and the summary, and what `auto` chose and why: ris over trs on
+// the neon sign, whose strokes vary within its two triangles, and power on a quad of flat
+// emission, where drawing by the texels gains nothing (a texel gain of exactly 1).
+TEST_F(RenderCliTest, SetUpByPartAndTheStrategyAutoChose) {
+  const fs::path flat = write_quad_scene("flat.gltf", R"({"name": "flat", "emissiveFactor": [1, 1, 1]})");
+  for (const auto& [scene, used] : {std::pair{kScene, "ris"}, std::pair{flat, "power"}}) {
+    SCOPED_TRACE(scene.string());
+    const RunResult result =
+        run(tiny(scene, {"--strategy", "auto", "--out", file("auto.exr").string(), "--stats", file("auto.json").string()}));
+    ASSERT_EQ(result.status, 0) << result.err;
+    EXPECT_NE(result.out.find("set-up's largest part: "), std::string::npos) << result.out;
+    EXPECT_NE(result.out.find(std::string("strategy auto: ")), std::string::npos) << result.out;
+    const nlohmann::json stats = read_json(file("auto.json"));
+    EXPECT_EQ(stats["settings"]["strategy"], used);
+    const nlohmann::json& choice = stats["strategy_choice"];
+    EXPECT_EQ(choice["asked"], "auto");
+    EXPECT_EQ(choice["used"], used);
+    // The neon sign's strokes cover 4.8% of its peak on average; flat emission gains nothing.
+    const double gain = choice["texel_gain"].get<double>();
+    if (std::string(used) == "ris")
+      EXPECT_GT(gain, 5.0);
+    else
+      EXPECT_NEAR(gain, 1.0, 1e-3);
+    EXPECT_FALSE(choice["reason"].get<std::string>().empty());
+    double parts = 0.0;
+    for (const char* part : {"loading", "texture_decoding", "bvh", "emission", "light_sampler", "subdivision",
+                             "light_structure", "first_frame"}) {
+      ASSERT_TRUE(stats["setup_ms"].contains(part)) << part;
+      EXPECT_GE(stats["setup_ms"][part].get<double>(), 0.0) << part;
+      parts += stats["setup_ms"][part].get<double>();
+    }
+    EXPECT_GT(parts, 0.0);
+    EXPECT_GE(stats["light_sampler_parts"].get<double>(), 1.0);
+  }
+  // A strategy named is no choice.
+  ASSERT_EQ(run(tiny(flat, {"--strategy", "tree", "--out", file("tree.exr").string(), "--stats",
+                            file("tree.json").string()})).status, 0);
+  EXPECT_TRUE(read_json(file("tree.json"))["strategy_choice"].is_null());
 }
 
 TEST_F(RenderCliTest, MissingEmissiveTexture) {

@@ -26,7 +26,8 @@ const std::map<std::string, tracer::StrategyKind> kStrategies = {
     {"ris", tracer::StrategyKind::ris},
     {"tree", tracer::StrategyKind::tree},
     {"texel", tracer::StrategyKind::texel},
-    {"tree-texel", tracer::StrategyKind::tree_texel}};
+    {"tree-texel", tracer::StrategyKind::tree_texel},
+    {"auto", tracer::StrategyKind::automatic}};
 
 const std::map<std::string, tracer::TreeImportance> kTreeImportances = {
     {"pbrt", tracer::TreeImportance::pbrt}, {"cycles", tracer::TreeImportance::cycles}};
@@ -159,8 +160,9 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv, std
                  "integrals); auto: Vulkan on a GPU, else the native CPU backend")
       ->check(CLI::IsMember(names(kBackends)))
       ->capture_default_str();
-  // Refined by default: the same lights for a fraction of the sampler's work (docs/benchmarks.md).
-  r.sampler.refinement.min_acceptance = 0.5f;
+  // Refined by the cost model by default: the same lights for less of the sampler's work, and
+  // no split its frames cannot pay for (docs/benchmarks.md).
+  r.sampler.refinement = lightsampler::auto_refinement(0.0);  // the lights a frame draws are filled in by the renderer
   add_refine_option(app, r.sampler.refinement);
   app.add_option("--device", r.sampler.vulkan.device,
                  "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE)");
@@ -237,8 +239,9 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv, std
   r.strategy.kind = kStrategies.at(strategy);
   r.strategy.candidates_from = kStrategies.at(candidates_from);
   for (const char* option : {"--candidates", "--candidates-from"}) {
-    if (app.count(option) > 0 && r.strategy.kind != tracer::StrategyKind::ris) {
-      errors << "trs-render: error: " << option << " belongs to --strategy ris\n";
+    if (app.count(option) > 0 && r.strategy.kind != tracer::StrategyKind::ris &&
+        r.strategy.kind != tracer::StrategyKind::automatic) {
+      errors << "trs-render: error: " << option << " belongs to --strategy ris (and auto, where it chooses ris)\n";
       return kUsageError;
     }
   }

@@ -69,6 +69,34 @@ nlohmann::json light_structure(const tracer::StrategySetup& setup) {
   return {{"build_ms", setup.build_ms}, {"bytes", setup.bytes}};
 }
 
+/// The set-up's parts by name, in the order they run, milliseconds.
+std::vector<std::pair<const char*, double>> setup_parts(const tracer::RenderResult& result) {
+  const tracer::SetupTimes& t = result.setup;
+  return {{"loading", t.loading_ms},
+          {"texture_decoding", t.texture_decoding_ms},
+          {"bvh", t.bvh_ms},
+          {"emission", t.emission_ms},
+          {"light_sampler", t.light_sampler_ms},
+          {"subdivision", t.subdivision_ms},
+          {"light_structure", t.light_structure_ms},
+          {"first_frame", 1000.0 * result.first_frame_seconds}};
+}
+
+/// What `auto` chose and why; null for a strategy named.
+nlohmann::json strategy_choice_json(const tracer::StrategyOptions& asked, const tracer::StrategyChoice& choice) {
+  if (asked.kind != tracer::StrategyKind::automatic) return nullptr;
+  return {{"asked", tracer::to_string(asked.kind)},
+          {"used", tracer::to_string(choice.options.kind)},
+          {"texel_gain", choice.texel_gain},
+          {"reason", choice.reason}};
+}
+
+nlohmann::json setup_json(const tracer::RenderResult& result) {
+  nlohmann::json json = nlohmann::json::object();
+  for (const auto& [name, ms] : setup_parts(result)) json[name] = ms;
+  return json;
+}
+
 }  // namespace
 
 ProgressBar::ProgressBar(bool enabled, std::optional<double> budget_seconds)
@@ -130,7 +158,10 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
   for (const tracer::LightFrame& f : result.light_frames) ms.push_back(f.sampler_ms);
   nlohmann::json passes = nlohmann::json::object();
   for (const lightsampler::PassTime& p : sampler.passes) passes[lightsampler::to_string(p.pass)] = p.ms;
-  const bool tree = tracer::picks_by_tree(r.strategy);
+  // The options that rendered: auto's choice, or the options as given.
+  const tracer::StrategyOptions& used = result.strategy_choice.options;
+  const bool tree = tracer::picks_by_tree(used);
+  const bool ris = used.kind == tracer::StrategyKind::ris;
   return {
       {"settings",
        {{"scene", options.scene.string()},
@@ -147,20 +178,22 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"time", options.time_seconds ? nlohmann::json(*options.time_seconds) : nlohmann::json()},
         {"strategy", result.strategy},
         {"lights", r.strategy.lights},
-        {"candidates", r.strategy.kind == tracer::StrategyKind::ris ? nlohmann::json(r.strategy.candidates) : nlohmann::json()},
-        {"candidates_from", r.strategy.kind == tracer::StrategyKind::ris ? nlohmann::json(tracer::to_string(r.strategy.candidates_from)) : nlohmann::json()},
-        {"tree_importance", tree ? nlohmann::json(tracer::to_string(r.strategy.tree.importance)) : nlohmann::json()},
-        {"tree_power", tree ? nlohmann::json(tracer::to_string(r.strategy.tree.power)) : nlohmann::json()},
+        {"candidates", ris ? nlohmann::json(used.candidates) : nlohmann::json()},
+        {"candidates_from", ris ? nlohmann::json(tracer::to_string(used.candidates_from)) : nlohmann::json()},
+        {"tree_importance", tree ? nlohmann::json(tracer::to_string(used.tree.importance)) : nlohmann::json()},
+        {"tree_power", tree ? nlohmann::json(tracer::to_string(used.tree.power)) : nlohmann::json()},
         {"seed", r.seed},
         {"max_depth", r.max_depth},
         {"threads", r.threads},
         {"backend", lightsampler::to_string(r.sampler.backend)},
         {"refine", r.sampler.refinement.min_acceptance},
+        {"refine_rule", r.sampler.refinement.cost_model ? "cost" : "acceptance"},
         {"ocio_config", display_setting(preview, &DisplayTransform::config)},
         {"ocio_colorspace", display_setting(preview, &DisplayTransform::colorspace)},
         {"display", display_setting(preview, &DisplayTransform::display)},
         {"view", display_setting(preview, &DisplayTransform::view)}}},
       {"frames", result.frames},
+      {"strategy_choice", strategy_choice_json(r.strategy, result.strategy_choice)},
       {"interrupted", result.interrupted},
       {"frame", frame ? nlohmann::json(frame->frame) : nlohmann::json()},
       {"animation_seconds", frame ? nlohmann::json(frame->seconds) : nlohmann::json()},
@@ -169,6 +202,8 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
       {"light_structure", light_structure(result.light_structure)},
       {"wall_seconds", wall_seconds},
       {"setup_seconds", result.setup_seconds},
+      {"setup_ms", setup_json(result)},
+      {"light_sampler_parts", result.setup.sampler_parts},
       {"render_seconds", result.render_seconds},
       {"paths", result.paths},
       {"rays", result.rays},
@@ -214,6 +249,12 @@ void print_summary(std::ostream& out, const std::filesystem::path& image, const 
                 per_second(double(result.paths), result.render_seconds),
                 per_second(double(result.rays), result.render_seconds));
   out << line;
+  const auto parts = setup_parts(result);
+  const auto largest = std::max_element(parts.begin(), parts.end(),
+                                        [](const auto& a, const auto& b) { return a.second < b.second; });
+  std::snprintf(line, sizeof line, "  set-up's largest part: %s %.2f s\n", largest->first, largest->second / 1000.0);
+  out << line;
+  if (!result.strategy_choice.reason.empty()) out << "  strategy auto: " << result.strategy_choice.reason << "\n";
   if (result.light_structure.bytes > 0) {
     std::snprintf(line, sizeof line, "  light structure: built in %.2f ms, %.3g MiB\n",
                   result.light_structure.build_ms, double(result.light_structure.bytes) / (1 << 20));

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <string>
 
+#include "lightsampler/refinement.h"
+
 namespace trs {
 namespace {
 
@@ -52,6 +54,7 @@ nlohmann::ordered_json stats_json(const RunReport& run) {
   json["threads"] = threads(run);
   json["seed"] = run.options.seed;
   json["refine"] = run.options.refinement.min_acceptance;
+  json["refine_rule"] = lightsampler::splits_by_cost(run.options.refinement) ? "cost" : "acceptance";
   json["target_count"] = run.options.target_count
                              ? nlohmann::ordered_json(*run.options.target_count)
                              : nlohmann::ordered_json(nullptr);

@@ -15,6 +15,14 @@ namespace {
 
 constexpr std::uint32_t kNotLight = std::numeric_limits<std::uint32_t>::max();
 
+double ms_between(std::chrono::steady_clock::time_point start, std::chrono::steady_clock::time_point end) {
+  return std::chrono::duration<double, std::milli>(end - start).count();
+}
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return ms_between(start, std::chrono::steady_clock::now());
+}
+
 lightsampler::Addressing addressing(const Texture& texture) {
   if (texture.wrap_s == texture.wrap_t && texture.wrap_s != Wrap::mirrored_repeat)
     return texture.wrap_s == Wrap::repeat ? lightsampler::Addressing::wrap
@@ -29,6 +37,7 @@ lightsampler::Addressing addressing(const Texture& texture) {
 Emitters::Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampler, std::int64_t frame,
                    double seconds)
     : scene_(scene) {
+  const auto start = std::chrono::steady_clock::now();
   std::vector<std::uint32_t> emission_of_material(scene.materials.size(), kNotLight);
   double decode_ms = 0.0;
   for (std::uint32_t m = 0; m < scene.materials.size(); ++m) {
@@ -43,11 +52,25 @@ Emitters::Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampl
   }
   for (const Emission& e : emissions_)
     map_views_.push_back({e.luminance, e.width, e.height, e.addressing, e.strength});
+  const auto built = std::chrono::steady_clock::now();
   sampler_ = lightsampler::make_sampler(mesh(), map_views_, sampler);
   integrate();
+  const lightsampler::SamplerSetup sampler_setup = sampler_->setup();
+  setup_ = {ms_between(start, built), ms_between(built, std::chrono::steady_clock::now()) - sampler_setup.subdivision_ms,
+            sampler_setup.subdivision_ms, sampler_setup.parts};
 }
 
 Emitters::~Emitters() = default;
+
+void Emitters::rebuild_sampler(const lightsampler::SamplerOptions& sampler) {
+  const auto start = std::chrono::steady_clock::now();
+  sampler_.reset();  // the old one's memory (a GPU's) before the new one's
+  sampler_ = lightsampler::make_sampler(mesh(), map_views_, sampler);
+  const lightsampler::SamplerSetup sampler_setup = sampler_->setup();
+  setup_.sampler_ms += ms_since(start) - sampler_setup.subdivision_ms;
+  setup_.subdivision_ms = sampler_setup.subdivision_ms;
+  setup_.sampler_parts = sampler_setup.parts;
+}
 
 void Emitters::integrate() {
   // The counting pass alone gives every light's integral; after update_map it counts the
@@ -60,13 +83,6 @@ void Emitters::integrate() {
   total_density_ = frame.expected_total;
 }
 
-namespace {
-
-double ms_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 Emitters::Emission Emitters::emission_at(std::uint32_t material_index, std::int64_t frame, double seconds,
                                          const Emission* current, double& decode_ms) const {

@@ -1,5 +1,6 @@
 #include "gltf_materials.h"
 
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <regex>
@@ -90,8 +91,8 @@ Texture read_texture(const Document& document, int index, Use use) {
 /// Scene textures by glTF texture and use, each decoded once however many materials share it.
 class Textures {
  public:
-  Textures(const Document& document, std::vector<Texture>& textures)
-      : document_(document), textures_(textures) {}
+  Textures(const Document& document, std::vector<Texture>& textures, double& decode_seconds)
+      : document_(document), textures_(textures), decode_seconds_(decode_seconds) {}
 
   std::int32_t get(const tinygltf::TextureInfo& info, Use use, const std::string& what) {
     if (info.index < 0) return kNoTexture;
@@ -101,7 +102,9 @@ class Textures {
     }
     const auto [entry, added] = loaded_.try_emplace({info.index, use}, kNoTexture);
     if (added) {
+      const auto start = std::chrono::steady_clock::now();
       textures_.push_back(read_texture(document_, info.index, use));
+      decode_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       entry->second = static_cast<std::int32_t>(textures_.size() - 1);
     }
     return entry->second;
@@ -110,6 +113,7 @@ class Textures {
  private:
   const Document& document_;
   std::vector<Texture>& textures_;
+  double& decode_seconds_;
   std::map<std::pair<int, Use>, std::int32_t> loaded_;
 };
 
@@ -183,7 +187,7 @@ void read_emission_animation(const Document& document, Scene& scene) {
 }  // namespace
 
 void read_materials(const Document& document, Scene& scene) {
-  Textures textures(document, scene.textures);
+  Textures textures(document, scene.textures, scene.texture_decode_seconds);
   const auto& materials = document.model().materials;
   for (std::size_t m = 0; m < materials.size(); ++m) {
     const tinygltf::Material& source = materials[m];

@@ -1,5 +1,6 @@
 #include "tracer/gltf_scene.h"
 
+#include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <numbers>
@@ -157,6 +158,7 @@ std::optional<Camera> first_camera(const Document& document) {
 }  // namespace
 
 Scene load_gltf_scene(const std::filesystem::path& file) {
+  const auto start = std::chrono::steady_clock::now();
   trs::check_input_file(file);
   const Document document(file);
   Scene scene;
@@ -164,6 +166,7 @@ Scene load_gltf_scene(const std::filesystem::path& file) {
   read_materials(document, scene);
   read_geometry(document, scene);
   scene.camera = first_camera(document);
+  scene.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return scene;
 }
 

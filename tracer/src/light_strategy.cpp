@@ -41,14 +41,15 @@ std::unique_ptr<LightStrategy> make_source(const Emitters& emitters, StrategyKin
     case StrategyKind::tree: return make_tree_strategy(emitters, options);
     case StrategyKind::texel: return make_texel_strategy(emitters);
     case StrategyKind::tree_texel: return make_tree_texel_strategy(emitters, options);
-    case StrategyKind::ris: break;
+    case StrategyKind::ris:
+    case StrategyKind::automatic: break;
   }
-  throw std::invalid_argument("unknown light strategy");
+  throw std::invalid_argument(std::string("no light strategy made as ") + to_string(kind));
 }
 
 }  // namespace
 
-bool resamplable(StrategyKind kind) { return kind != StrategyKind::ris; }
+bool resamplable(StrategyKind kind) { return kind != StrategyKind::ris && kind != StrategyKind::automatic; }
 
 std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,
                                                    const StrategyOptions& options) {
@@ -77,6 +78,7 @@ const char* to_string(StrategyKind kind) {
     case StrategyKind::tree: return "tree";
     case StrategyKind::texel: return "texel";
     case StrategyKind::tree_texel: return "tree-texel";
+    case StrategyKind::automatic: return "auto";
   }
   return "?";
 }
@@ -84,7 +86,7 @@ const char* to_string(StrategyKind kind) {
 std::optional<StrategyKind> parse_strategy(const std::string& name) {
   for (StrategyKind kind :
        {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris, StrategyKind::tree,
-        StrategyKind::texel, StrategyKind::tree_texel})
+        StrategyKind::texel, StrategyKind::tree_texel, StrategyKind::automatic})
     if (name == to_string(kind)) return kind;
   return std::nullopt;
 }

@@ -78,11 +78,26 @@ lightsampler::SamplerOptions sampler_options(const RenderSettings& settings) {
   options.cpu.threads = settings.threads;
   // The subdivision speeds up drawing lights; the other strategies only read integrals and texels.
   if (!draws_point_lights(settings.strategy)) options.refinement = {};
+  // The cost model splits for the lights a frame draws.
+  if (options.refinement.cost_model) options.refinement.frame_samples = settings.strategy.lights;
   return options;
 }
 
+/// The strategy that renders; `auto`'s light sampler is subdivided once `auto` chose a
+/// strategy that draws point lights (the emitters are built without the subdivision for it,
+/// which the others do not use).
+StrategyChoice choose(Emitters& emitters, const RenderSettings& settings) {
+  StrategyChoice choice = choose_strategy(emitters, settings.strategy);
+  if (settings.strategy.kind == StrategyKind::automatic && draws_point_lights(choice.options)) {
+    RenderSettings chosen = settings;
+    chosen.strategy = choice.options;
+    emitters.rebuild_sampler(sampler_options(chosen));
+  }
+  return choice;
+}
+
 /// The lights of a still must emit something; an animation's may be dark in some frames.
-const Emitters& lit(const Emitters& emitters, const Scene& scene) {
+Emitters& lit(Emitters& emitters, const Scene& scene) {
   if (emitters.count() > 0 && !(emitters.total_density() > 0.0) && !scene.animated())
     throw std::invalid_argument("the lights emit nothing: no emissive texel has any luminance");
   return emitters;
@@ -95,10 +110,19 @@ struct Renderer::State {
   RenderSettings settings;
   std::int64_t frame;
   double setup_seconds = 0.0;
+  // The instants between the parts of the set-up, taken as the members are built, in order.
+  Clock::time_point start = Clock::now();
   Geometry geometry;
+  Clock::time_point geometry_built = Clock::now();
   Emitters emitters;
+  Clock::time_point emitters_built = Clock::now();
+  /// The light sampler's set-up so far: `auto` may build it again before the strategy.
+  double sampler_setup_ms = emitters.setup().sampler_ms + emitters.setup().subdivision_ms;
+  StrategyChoice choice;
   std::unique_ptr<LightStrategy> strategy;
+  Clock::time_point strategy_built = Clock::now();
   PinholeCamera camera;
+  double first_frame_seconds = 0.0;  ///< of the frames of this animation frame
   /// The frames rendered so far of this animation frame; render() starts it again.
   struct Sums {
     Accumulator pixels;
@@ -116,7 +140,8 @@ struct Renderer::State {
         frame(f),
         geometry(s.mesh),
         emitters(s, sampler_options(r), f, double(f) / r.fps),
-        strategy(make_light_strategy(lit(emitters, s), r.strategy)),
+        choice(choose(lit(emitters, s), r)),
+        strategy(make_light_strategy(emitters, choice.options)),
         camera(scene_camera(s), r.width, r.height) {}
 };
 
@@ -166,7 +191,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
     limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
   const std::size_t pixels = std::size_t(settings.width) * settings.height;
   const PathTracer tracer(s.scene, s.geometry, s.emitters, *s.strategy, settings.max_depth,
-                          connection_candidates(settings.strategy));
+                          connection_candidates(s.choice.options));
   const std::uint64_t frame_seed = settings.seed ^ lightsampler::mix64(std::uint64_t(s.frame));
   const lightsampler::PhiloxKey key = path_key(frame_seed);
   if (!s.sums) s.sums.emplace(State::Sums{Accumulator(pixels), {}, 0, 0.0, 0, 0});
@@ -184,6 +209,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
       break;
     }
     // The light sets of animation frames apart as their paths are: frame 0's are a still's.
+    const auto frame_start = Clock::now();
     s.strategy->begin_frame(std::uint64_t(s.frame) << 32 | f);
     tbb::parallel_for(
         tbb::blocked_range2d<unsigned>(0, settings.height, 8, 0, settings.width, 8),
@@ -214,6 +240,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
     sums.pixels.add(frame);
     sums.light_frames.push_back(s.strategy->last_frame());
     sums.frames = f + 1;
+    if (f == 0) s.first_frame_seconds = seconds_since(frame_start);
     if (progress) progress(f + 1 - first, end - first);
     if (settings.deadline && Clock::now() >= *settings.deadline) break;
   }
@@ -225,7 +252,17 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   result.width = settings.width;
   result.height = settings.height;
   result.setup_seconds = s.setup_seconds;
+  const EmittersSetup& lights = s.emitters.setup();
+  const auto ms = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+  const double rebuilt_ms = lights.sampler_ms + lights.subdivision_ms - s.sampler_setup_ms;
+  result.setup = {1000.0 * (s.scene.load_seconds - s.scene.texture_decode_seconds), 1000.0 * s.scene.texture_decode_seconds,
+                  ms(s.start, s.geometry_built), lights.emission_ms, lights.sampler_ms, lights.subdivision_ms,
+                  ms(s.emitters_built, s.strategy_built) - rebuilt_ms, lights.sampler_parts};
+  result.first_frame_seconds = s.first_frame_seconds;
   result.strategy = s.strategy->name();
+  result.strategy_choice = s.choice;
   result.light_device = s.strategy->device();
   result.light_structure = s.strategy->setup();
   result.frames = sums.frames;

@@ -32,6 +32,14 @@ struct EmissionUpdate {
   bool changed() const { return !maps.empty(); }
 };
 
+/// What building the emitters took, milliseconds.
+struct EmittersSetup {
+  double emission_ms = 0.0;      ///< the emission maps: radiance and luminance per texel, the lights' mesh
+  double sampler_ms = 0.0;       ///< the light sampler's construction and first count, its subdivision excluded
+  double subdivision_ms = 0.0;   ///< the light sampler's subdivision (lightsampler/refinement.h)
+  std::uint64_t sampler_parts = 0;  ///< the triangles the light sampler samples (its subdivision's parts)
+};
+
 class Emitters {
  public:
   /// Builds the light sampler over the lights with `sampler` (lightsampler::make_sampler), their
@@ -84,6 +92,10 @@ class Emitters {
   /// The light sampler over the lights: the texel lookups and per-light integrals every
   /// strategy uses, and the point lights of `trs`.
   lightsampler::Sampler& sampler() const { return *sampler_; }
+  /// Builds the light sampler again with `sampler`'s options (a subdivision decided after the
+  /// emitters were built: `auto`'s); the lights and their integrals stay as they are.
+  void rebuild_sampler(const lightsampler::SamplerOptions& sampler);
+  const EmittersSetup& setup() const { return setup_; }
 
  private:
   /// One emissive material: radiance per texel (emissive factor times texture), its strength.
@@ -124,6 +136,7 @@ class Emitters {
   std::vector<double> light_density_;
   double total_density_ = 0.0;
   std::unique_ptr<lightsampler::Sampler> sampler_;
+  EmittersSetup setup_;
 };
 
 }  // namespace tracer

@@ -115,8 +115,9 @@ class LightStrategy {
 inline constexpr unsigned kDefaultCandidates = 4;
 
 /// `ris` resamples the points of another strategy per shading point (PathTracer): by default
-/// the point lights of `trs`.
-enum class StrategyKind { uniform, power, trs, ris, tree, texel, tree_texel };
+/// the point lights of `trs`. `automatic` (`auto`) is one of the others, chosen for the scene
+/// (choose_strategy).
+enum class StrategyKind { uniform, power, trs, ris, tree, texel, tree_texel, automatic };
 
 /// tree: how a node's importance for a shading point is estimated (tree_importance.h).
 enum class TreeImportance { pbrt, cycles };
@@ -150,7 +151,7 @@ inline bool picks_by_tree(const StrategyOptions& options) {
   return source_kind(options) == StrategyKind::tree || source_kind(options) == StrategyKind::tree_texel;
 }
 
-/// Whether the strategy draws a set of point lights every frame.
+/// Whether the strategy draws a set of point lights every frame (`auto` only once it chose one).
 inline bool draws_point_lights(const StrategyOptions& options) {
   return source_kind(options) == StrategyKind::trs;
 }
@@ -164,7 +165,28 @@ inline unsigned connection_candidates(const StrategyOptions& options) {
   return options.kind == StrategyKind::ris ? options.candidates : 1;
 }
 
-/// Throws std::invalid_argument when the scene has no lights.
+/// `auto` takes `ris` over `trs` where the emission varies within the lights by at least this
+/// texel gain (StrategyChoice), and `power` below it (docs/noise.md, "The default").
+inline constexpr double kAutoTexelGain = 1.5;
+
+/// The strategy that renders, and for `auto` why it was chosen.
+struct StrategyChoice {
+  StrategyOptions options;  ///< as given; for `auto`, with the kind it chose
+  /// auto: how much a point drawn by the texels gains over one drawn uniformly on its light, per
+  /// sample: E[D(x) / mean density of x's light] for x drawn with density D, 1 where the
+  /// emission is flat on every light (the ratio of the two draws' second moments when the
+  /// lights' emission dominates). 0 for the other strategies.
+  double texel_gain = 0.0;
+  std::string reason;  ///< auto: the choice in a sentence; empty for the others
+};
+
+/// The strategy `options` names; for `auto`, `ris` over `trs` where texel_gain reaches
+/// kAutoTexelGain (the texture decides), else `power` (drawing by the texels gains too little
+/// for its cost). The gain is measured on a frame of the emitters' light sampler, with a fixed
+/// seed: every seed of a scene renders with the same strategy.
+StrategyChoice choose_strategy(const Emitters& emitters, const StrategyOptions& options);
+
+/// Throws std::invalid_argument when the scene has no lights or `options` names `auto` (choose first).
 std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,
                                                    const StrategyOptions& options);
 

@@ -44,6 +44,19 @@ struct RenderSettings {
 inline constexpr double kAutoLightsPerQuery = 0.25;
 double auto_lights(unsigned width, unsigned height, unsigned max_depth);
 
+/// The set-up by part, milliseconds: the scene's loading, then what RenderResult::setup_seconds
+/// is made of.
+struct SetupTimes {
+  double loading_ms = 0.0;          ///< reading the scene (Scene::load_seconds), its texture decoding excluded
+  double texture_decoding_ms = 0.0; ///< decoding its texture images
+  double bvh_ms = 0.0;              ///< the scene's ray-tracing structure
+  double emission_ms = 0.0;         ///< the emission maps and the lights' mesh (EmittersSetup)
+  double light_sampler_ms = 0.0;    ///< the light sampler's construction and first count
+  double subdivision_ms = 0.0;      ///< the light sampler's subdivision
+  double light_structure_ms = 0.0;  ///< the strategy's own structure (the tree, alias tables)
+  std::uint64_t sampler_parts = 0;  ///< triangles the light sampler samples
+};
+
 struct RenderResult {
   unsigned width = 0;
   unsigned height = 0;
@@ -58,12 +71,15 @@ struct RenderResult {
   std::vector<LightFrame> light_frames;  ///< per frame
   StrategySetup light_structure;      ///< what the strategy built over the lights (zeros: nothing)
   double setup_seconds = 0.0;         ///< scene acceleration structure, emitters, strategy
+  SetupTimes setup;                   ///< setup_seconds by part
+  double first_frame_seconds = 0.0;   ///< the first frame's wall time (its lights drawn, its paths traced)
   double render_seconds = 0.0;        ///< the frames, light sampling included
   std::uint64_t paths = 0;
   std::uint64_t rays = 0;             ///< closest-hit and shadow rays traced
   std::uint64_t invalid_paths = 0;    ///< paths with a NaN or infinite estimate, counted as black
   bool interrupted = false;           ///< stopped early by the cancel flag (not by the deadline)
-  std::string strategy;
+  std::string strategy;               ///< the strategy that rendered
+  StrategyChoice strategy_choice;     ///< its options, and for `auto` why it was chosen
   std::string light_device;           ///< the light sampler's backend and device, if any
 };
 

@@ -123,6 +123,9 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::optional<Camera> camera;  ///< the first camera of the scene's node hierarchy, if any
+  /// What loading took, for reports: in all, and of that decoding the texture images.
+  double load_seconds = 0.0;
+  double texture_decode_seconds = 0.0;
 
   /// Whether any emission changes over time: a sequence or keyed factors.
   bool animated() const;

@@ -80,8 +80,8 @@ class TrsStrategy : public LightStrategy {
                                     const ShadingPoint&) const override {
     if (records_.empty()) return std::nullopt;
     const LightSample& s = records_[index(random[0])];
-    // A refined sampler's light, brought back to its triangle, can land an ulp across a texel
-    // edge onto a texel without density; it carries nothing.
+    // A refined sampler's light is brought back onto the texel it was drawn on; should rounding
+    // still leave it on a texel without density, it carries nothing.
     if (!(s.mis_pdf > 0.0f)) return std::nullopt;
     return s;
   }

@@ -1,0 +1,81 @@
+#!/usr/bin/env python3
+"""The noise of strategies over several scenes, from the results of trs-study runs.
+
+For each study directory (one scene each, trs-study's --out), each strategy's lit-pixel relMSE
+against a baseline's (the baseline's relMSE over the strategy's: above 1 is less noisy than the
+baseline), seed against seed, the median over the seeds; at each time budget and each sample
+count the studies share. Prints a Markdown table per budget with a geometric-mean row, and
+writes them as CSV.
+
+  tools/noise_summary.py study/neon-sign study/lantern --baseline tree --csv noise.csv
+"""
+import argparse
+import csv
+import math
+import statistics
+import sys
+from collections import defaultdict
+from pathlib import Path
+
+
+def read_study(folder):
+    """{(budget kind, value): {strategy: {seed: relmse_lit}}} of one study."""
+    table = defaultdict(lambda: defaultdict(dict))
+    with open(Path(folder) / "results.csv", newline="") as f:
+        for row in csv.DictReader(f):
+            budget = ("time", float(row["time"])) if row["time"] else ("spp", int(row["spp"]))
+            table[budget][row["strategy"]][row["seed"]] = float(row["relmse_lit"])
+    return table
+
+
+def ratio(baseline, other):
+    """The baseline's relMSE over the other's, seed by seed, median over the seeds both have."""
+    seeds = sorted(set(baseline) & set(other))
+    if not seeds:
+        return math.nan
+    return statistics.median(baseline[s] / other[s] if other[s] > 0 else math.inf for s in seeds)
+
+
+def label(budget):
+    kind, value = budget
+    return f"{value:g} s" if kind == "time" else f"{value} spp"
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("studies", nargs="+", type=Path, help="trs-study output directories")
+    p.add_argument("--baseline", default="tree", help="the strategy every ratio is against")
+    p.add_argument("--csv", type=Path)
+    args = p.parse_args()
+
+    studies = {folder.name: read_study(folder) for folder in args.studies}
+    budgets = sorted(set.intersection(*(set(t) for t in studies.values())))
+    rows = []
+    for budget in budgets:
+        strategies = sorted(set.intersection(*(set(t[budget]) for t in studies.values())))
+        if args.baseline not in strategies:
+            sys.exit(f"noise_summary: the baseline {args.baseline} is not in every study at {label(budget)}")
+        others = [s for s in strategies if s != args.baseline]
+        print(f"\n{label(budget)}: {args.baseline}'s relMSE over each strategy's (lit pixels, median over seeds)\n")
+        print("| scene | " + " | ".join(f"`{s}`" for s in others) + " |")
+        print("|---|" + "---|" * len(others))
+        logs = defaultdict(list)
+        for scene, table in studies.items():
+            values = {s: ratio(table[budget][args.baseline], table[budget][s]) for s in others}
+            for s, v in values.items():
+                rows.append({"scene": scene, "budget": label(budget), "strategy": s, "baseline": args.baseline,
+                             "ratio": v})
+                if v > 0 and math.isfinite(v):
+                    logs[s].append(math.log(v))
+            print(f"| {scene} | " + " | ".join(f"{values[s]:.2f}x" for s in others) + " |")
+        means = {s: math.exp(statistics.fmean(logs[s])) if logs[s] else math.nan for s in others}
+        print("| geometric mean | " + " | ".join(f"{means[s]:.2f}x" for s in others) + " |")
+    if args.csv:
+        with open(args.csv, "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=["scene", "budget", "strategy", "baseline", "ratio"])
+            writer.writeheader()
+            writer.writerows(rows)
+
+
+if __name__ == "__main__":
+    main()
