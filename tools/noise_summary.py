@@ -4,7 +4,7 @@
 For each study directory (one scene each, trs-study's --out), each strategy's lit-pixel relMSE
 against a baseline's (the baseline's relMSE over the strategy's: above 1 is less noisy than the
 baseline), seed against seed, the median over the seeds; at each time budget and each sample
-count the studies share. Prints a Markdown table per budget with a geometric-mean row, and
+count the studies share (--metric relmse: over the whole image). Prints a Markdown table per budget with a geometric-mean row, and
 writes them as CSV.
 
   tools/noise_summary.py study/neon-sign study/lantern --baseline tree --csv noise.csv
@@ -18,13 +18,13 @@ from collections import defaultdict
 from pathlib import Path
 
 
-def read_study(folder):
-    """{(budget kind, value): {strategy: {seed: relmse_lit}}} of one study."""
+def read_study(folder, metric):
+    """{(budget kind, value): {strategy: {seed: metric}}} of one study."""
     table = defaultdict(lambda: defaultdict(dict))
     with open(Path(folder) / "results.csv", newline="") as f:
         for row in csv.DictReader(f):
             budget = ("time", float(row["time"])) if row["time"] else ("spp", int(row["spp"]))
-            table[budget][row["strategy"]][row["seed"]] = float(row["relmse_lit"])
+            table[budget][row["strategy"]][row["seed"]] = float(row[metric])
     return table
 
 
@@ -45,10 +45,13 @@ def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("studies", nargs="+", type=Path, help="trs-study output directories")
     p.add_argument("--baseline", default="tree", help="the strategy every ratio is against")
+    p.add_argument("--metric", default="relmse_lit", choices=["relmse_lit", "relmse"],
+                   help="over the lit pixels (trs-study's), or over the whole image, for a scene whose lit "
+                        "pixels are black (a frame of empty space)")
     p.add_argument("--csv", type=Path)
     args = p.parse_args()
 
-    studies = {folder.name: read_study(folder) for folder in args.studies}
+    studies = {folder.name: read_study(folder, args.metric) for folder in args.studies}
     budgets = sorted(set.intersection(*(set(t) for t in studies.values())))
     rows = []
     for budget in budgets:
@@ -56,7 +59,8 @@ def main():
         if args.baseline not in strategies:
             sys.exit(f"noise_summary: the baseline {args.baseline} is not in every study at {label(budget)}")
         others = [s for s in strategies if s != args.baseline]
-        print(f"\n{label(budget)}: {args.baseline}'s relMSE over each strategy's (lit pixels, median over seeds)\n")
+        where = "lit pixels" if args.metric == "relmse_lit" else "whole image"
+        print(f"\n{label(budget)}: {args.baseline}'s relMSE over each strategy's ({where}, median over seeds)\n")
         print("| scene | " + " | ".join(f"`{s}`" for s in others) + " |")
         print("|---|" + "---|" * len(others))
         logs = defaultdict(list)
