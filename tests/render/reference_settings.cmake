@@ -3,3 +3,6 @@
 set(TRS_REFERENCE_SETTINGS --width 64 --height 36 --max-depth 3 --lights 20000 --threads 2)
 set(TRS_REFERENCE_SPP 1024)
 set(TRS_REFERENCE_SCENES neon-sign gradient-screen mosaic tile-emitter lantern night-street video-wall)
+# The real assets of scenes/real (scenes/real/README.md), by their path under scenes/.
+set(TRS_REFERENCE_REAL_SCENES real/damaged-helmet real/lantern real/boombox real/toy-car real/energy-ball
+    real/spell-disk real/space-exploration real/terrarium-bots)

@@ -66,6 +66,7 @@ void Emitters::rebuild_sampler(const lightsampler::SamplerOptions& sampler) {
   const auto start = std::chrono::steady_clock::now();
   sampler_.reset();  // the old one's memory (a GPU's) before the new one's
   sampler_ = lightsampler::make_sampler(mesh(), map_views_, sampler);
+  integrate();  // its first count, in the set-up as at construction (the same integrals)
   const lightsampler::SamplerSetup sampler_setup = sampler_->setup();
   setup_.sampler_ms += ms_since(start) - sampler_setup.subdivision_ms;
   setup_.subdivision_ms = sampler_setup.subdivision_ms;
