@@ -810,7 +810,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("out", help="output folder (scenes/real)")
     ap.add_argument("names", nargs="*", help="assets to stage (all by default)")
-    ap.add_argument("--mirrors", default="/work/.mirror", help="folder of the bare git snapshots")
+    ap.add_argument("--mirrors", required=True,
+                    help="folder of the bare git snapshots of the source repositories (owner+name/repo)")
     args = ap.parse_args()
     names = args.names or list(ASSETS)
     for n in names:
