@@ -125,7 +125,7 @@ class RefinedSampler final : public Sampler {
     };
     if (on_drawn(s)) return s;
     constexpr float kStep = 0x1p-20f;
-    for (const auto [d1, d2] : {std::pair{kStep, 0.0f}, {-kStep, 0.0f}, {0.0f, kStep}, {0.0f, -kStep}}) {
+    for (const auto& [d1, d2] : {std::pair{kStep, 0.0f}, {-kStep, 0.0f}, {0.0f, kStep}, {0.0f, -kStep}}) {
       const Sample moved{s.triangle, s.b1 + d1, s.b2 + d2};
       if (moved.b1 >= 0.0f && moved.b2 >= 0.0f && moved.b1 + moved.b2 <= 1.0f && on_drawn(moved)) return moved;
     }
