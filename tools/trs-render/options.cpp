@@ -98,7 +98,7 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv, std
       "trs-render");
   RenderOptions options;
   tracer::RenderSettings& r = options.render;
-  std::string strategy = "ris", candidates_from = "trs", tree_importance = "pbrt", tree_power = "exact",
+  std::string strategy = "auto", candidates_from = "trs", tree_importance = "pbrt", tree_power = "exact",
               backend = "auto", lights = "auto", out, stats, preview, variance, emitter_mask;
   double time = 0.0;
   bool quiet = false;

@@ -133,7 +133,7 @@ struct TreeOptions {
 };
 
 struct StrategyOptions {
-  StrategyKind kind = StrategyKind::ris;  /// the most efficient at equal time over the shipped scenes (docs/noise.md)
+  StrategyKind kind = StrategyKind::automatic;  ///< ris or power, as the scene's emission calls for (docs/noise.md)
   double lights = 1e6;          ///< trs (and ris over it): expected point lights per frame (N_target)
   std::uint64_t seed = 0;       ///< trs: frame f draws its set with a seed from (seed, f)
   unsigned candidates = kDefaultCandidates;  ///< ris: points resampled per shading point
