@@ -15,12 +15,8 @@ namespace {
 
 constexpr std::uint32_t kNotLight = std::numeric_limits<std::uint32_t>::max();
 
-double ms_between(std::chrono::steady_clock::time_point start, std::chrono::steady_clock::time_point end) {
-  return std::chrono::duration<double, std::milli>(end - start).count();
-}
-
 double ms_since(std::chrono::steady_clock::time_point start) {
-  return ms_between(start, std::chrono::steady_clock::now());
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 lightsampler::Addressing addressing(const Texture& texture) {
@@ -52,12 +48,8 @@ Emitters::Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampl
   }
   for (const Emission& e : emissions_)
     map_views_.push_back({e.luminance, e.width, e.height, e.addressing, e.strength});
-  const auto built = std::chrono::steady_clock::now();
-  sampler_ = lightsampler::make_sampler(mesh(), map_views_, sampler);
-  integrate();
-  const lightsampler::SamplerSetup sampler_setup = sampler_->setup();
-  setup_ = {ms_between(start, built), ms_between(built, std::chrono::steady_clock::now()) - sampler_setup.subdivision_ms,
-            sampler_setup.subdivision_ms, sampler_setup.parts};
+  setup_.emission_ms = ms_since(start);
+  rebuild_sampler(sampler);
 }
 
 Emitters::~Emitters() = default;
@@ -66,7 +58,7 @@ void Emitters::rebuild_sampler(const lightsampler::SamplerOptions& sampler) {
   const auto start = std::chrono::steady_clock::now();
   sampler_.reset();  // the old one's memory (a GPU's) before the new one's
   sampler_ = lightsampler::make_sampler(mesh(), map_views_, sampler);
-  integrate();  // its first count, in the set-up as at construction (the same integrals)
+  integrate();  // its first count, in the set-up (the same integrals after a rebuild)
   const lightsampler::SamplerSetup sampler_setup = sampler_->setup();
   setup_.sampler_ms += ms_since(start) - sampler_setup.subdivision_ms;
   setup_.subdivision_ms = sampler_setup.subdivision_ms;

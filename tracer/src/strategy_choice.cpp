@@ -2,9 +2,9 @@
 // (trs) rather than uniformly over it (power) pays where the emission varies within the lights:
 // a neon sign's strokes on two triangles. Where the lights are small against the texture's
 // features (an atlas on a dense mesh), both draws are the same, and `power` is the cheapest per
-// sample; the light tree, which weighs distance and orientation, costs 1.2 to 3 times a frame of
-// `power` in this renderer and did not repay it at equal time on any such scene measured
-// (docs/noise.md, "The default").
+// sample; the light tree, which weighs distance and orientation, renders 1.1 to 1.7 times fewer
+// frames than `power` in this renderer and did not repay it at equal time on the real assets
+// measured (docs/noise.md, "Real assets, and the default").
 //
 // The measure: with x drawn from p(x) = D(x) / I and m_T the mean density of x's light, a
 // light chosen by power and a point uniform on it has the density m_T / I, and for an
