@@ -105,6 +105,13 @@ Document::Document(std::filesystem::path file) : file_(std::move(file)) {
 
 void Document::fail(const std::string& problem) const { throw FileError(file_, problem); }
 
+void Document::require_only(std::initializer_list<std::string_view> implemented) const {
+  for (const std::string& extension : model_.extensionsRequired) {
+    if (std::find(implemented.begin(), implemented.end(), extension) == implemented.end())
+      fail("requires the extension " + extension + ", which is not implemented");
+  }
+}
+
 void Document::read_pointer_channels() {
   const bool used = std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(),
                               "KHR_animation_pointer") != model_.extensionsUsed.end();

@@ -93,7 +93,7 @@ struct QuadOverPlane {
   }
 };
 
-StrategyOptions options(StrategyKind kind, double lights = 2000) {
+inline StrategyOptions options(StrategyKind kind, double lights = 2000) {
   StrategyOptions o;
   o.kind = kind;
   o.lights = lights;
@@ -101,12 +101,12 @@ StrategyOptions options(StrategyKind kind, double lights = 2000) {
   return o;
 }
 
-std::unique_ptr<LightStrategy> strategy(const Emitters& emitters, StrategyKind kind,
+inline std::unique_ptr<LightStrategy> strategy(const Emitters& emitters, StrategyKind kind,
                                         double lights = 2000) {
   return make_light_strategy(emitters, options(kind, lights));
 }
 
-const std::vector<StrategyKind> kEveryStrategy = {StrategyKind::uniform, StrategyKind::power,
+inline const std::vector<StrategyKind> kEveryStrategy = {StrategyKind::uniform, StrategyKind::power,
                                                   StrategyKind::trs,     StrategyKind::ris,
                                                   StrategyKind::tree,    StrategyKind::texel,
                                                   StrategyKind::tree_texel};

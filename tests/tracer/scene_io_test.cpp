@@ -261,6 +261,64 @@ TEST_F(SceneIoTest, FirstCameraOfTheHierarchy) {
   EXPECT_FLOAT_EQ(scene.camera->aspect, 1.5f);
 }
 
+// KHR_lights_punctual: placed by their nodes, shining down the node's -Z, candela and lux over
+// 683 lm/W (Blender's importer), the spot's cones and the range as given.
+TEST_F(SceneIoTest, PunctualLightsInTheRenderersUnits) {
+  Gltf gltf;
+  gltf.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+  gltf.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
+      {{"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 683.0}, {"range", 4.0}, {"name", "bulb"}},
+      {{"type", "spot"}, {"intensity", 1366.0}, {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}},
+      {{"type", "directional"}, {"intensity", 6830.0}}};
+  gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2})}});
+  gltf.node({{"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  // 90 degrees about y turns -z into -x; the scale moves the spot but does not change it.
+  gltf.node({{"translation", {0, 1, 0}}, {"rotation", {0, kHalfSqrt2, 0, kHalfSqrt2}}, {"scale", {2, 2, 2}},
+             {"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}});
+  gltf.node({{"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}});
+  const tracer::Scene scene = tracer::load_gltf_scene(gltf.write(dir_, "lights"));
+  ASSERT_EQ(scene.lights.size(), 3u);
+  const tracer::PunctualLight& point = scene.lights[0];
+  EXPECT_EQ(point.kind, tracer::PunctualLight::Kind::point);
+  EXPECT_EQ(point.name, "light 0 'bulb'");
+  expect_near(point.position, {1, 2, 3});
+  expect_near(point.intensity, {1.0f, 0.5f, 0.25f});
+  EXPECT_FLOAT_EQ(point.range, 4.0f);
+  const tracer::PunctualLight& spot = scene.lights[1];
+  EXPECT_EQ(spot.kind, tracer::PunctualLight::Kind::spot);
+  expect_near(spot.position, {0, 1, 0});
+  expect_near(spot.direction, {-1, 0, 0});
+  expect_near(spot.intensity, {2, 2, 2});
+  EXPECT_FLOAT_EQ(spot.cos_inner, std::cos(0.2f));
+  EXPECT_FLOAT_EQ(spot.cos_outer, std::cos(0.5f));
+  const tracer::PunctualLight& sun = scene.lights[2];
+  EXPECT_EQ(sun.kind, tracer::PunctualLight::Kind::directional);
+  expect_near(sun.direction, {0, 0, -1});
+  expect_near(sun.intensity, {10, 10, 10});
+
+  gltf.doc["nodes"][3]["extensions"]["KHR_lights_punctual"]["light"] = 3;
+  const fs::path absent = gltf.write(dir_, "absent-light");
+  expect_error([&] { tracer::load_gltf_scene(absent); }, absent, "light 3 is not one of the file's 3 lights");
+  gltf.doc["nodes"][3]["extensions"]["KHR_lights_punctual"]["light"] = 1;
+  gltf.doc["extensions"]["KHR_lights_punctual"]["lights"][1]["spot"]["innerConeAngle"] = 0.6;
+  const fs::path cones = gltf.write(dir_, "cones");
+  expect_error([&] { tracer::load_gltf_scene(cones); }, cones, "light 1: the spot's cone angles");
+}
+
+// An extension the file requires and the renderer does not implement is refused by name; one it
+// implements is not.
+TEST_F(SceneIoTest, RequiredExtensionsTheRendererLacksAreRefused) {
+  Gltf gltf;
+  gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2})}});
+  gltf.doc["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_transmission"};
+  gltf.doc["extensionsRequired"] = {"KHR_lights_punctual"};
+  EXPECT_NO_THROW(tracer::load_gltf_scene(gltf.write(dir_, "implemented")));
+  gltf.doc["extensionsRequired"].push_back("KHR_materials_transmission");
+  const fs::path lacking = gltf.write(dir_, "lacking");
+  expect_error([&] { tracer::load_gltf_scene(lacking); }, lacking,
+               "requires the extension KHR_materials_transmission, which is not implemented");
+}
+
 TEST_F(SceneIoTest, ErrorsNameTheFileAtFault) {
   Gltf gltf;
   gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2}, {{"material", 0}})}});

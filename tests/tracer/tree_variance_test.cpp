@@ -22,8 +22,10 @@
 
 #include "estimate.h"
 #include "scene_builder.h"
-#include "strategies/tree.h"
+#include "strategies/light_choice.h"
+#include "strategies/strategies.h"
 #include "strategies/tree_importance.h"
+#include "strategies/triangle_point.h"
 
 namespace {
 
@@ -111,7 +113,9 @@ TEST(TreeVariance, IgnoringOrientationIsUnbiasedButNoisier) {
   options.kind = StrategyKind::tree;
   const Estimate tree = bench.run(*make_light_strategy(*bench.emitters, options), 2);
   const Estimate again = bench.run(*make_light_strategy(*bench.emitters, options), 3);
-  const auto blind_strategy = make_tree_strategy(*bench.emitters, TreePower::exact, std::make_unique<OrientationBlind>());
+  const auto blind_strategy = make_chosen_light_strategy(
+      *bench.emitters, make_tree_choice(*bench.emitters, TreePower::exact, std::make_unique<OrientationBlind>()),
+      make_solid_angle_point(*bench.emitters), "tree");
   const Estimate blind = bench.run(*blind_strategy, 4);
 
   EXPECT_GT(tree.mean.g, 0.0);

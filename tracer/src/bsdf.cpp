@@ -1,8 +1,8 @@
 // glTF 2.0 metallic-roughness BSDF.
 //
 // Specular: GGX (Trowbridge-Reitz) with Smith height-correlated masking-shadowing and Schlick
-// Fresnel, F0 = mix(0.04, base_color, metallic). Diffuse: Lambert with albedo
-// base_color (1 - metallic) (1 - max_c F_c(n.wo)). Weighting by the Fresnel at n.wo rather than at
+// Fresnel, F0 = mix(0.04, base_color, metallic), the dielectric share weighted by `specular`.
+// Diffuse: Lambert with albedo base_color (1 - metallic) (1 - max_c F_c(n.wo)). Weighting by the Fresnel at n.wo rather than at
 // the half vector takes from the diffuse the energy the specular layer reflects at grazing wo, which
 // the half-vector form does not (a white dielectric of roughness 0.1 would reflect 1.48 at n.wo 0.1);
 // the price is that the diffuse term is not reciprocal. Taking the largest channel bounds every
@@ -27,6 +27,8 @@ namespace tracer {
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
+/// glTF's dielectric reflectance at normal incidence (an index of refraction of 1.5).
+constexpr float kDielectricF0 = 0.04f;
 
 /// Smallest GGX alpha. Without a delta lobe, eval() and pdf() are non-zero around the mirror
 /// direction (peak pdf about 1 / (4 pi alpha^2) per steradian, finite in float), so light samples
@@ -88,7 +90,8 @@ Bsdf::Bsdf(const SurfaceParams& params, glm::vec3 normal) : normal_(normal) {
   const float metallic = std::clamp(params.metallic, 0.0f, 1.0f);
   const float roughness = std::clamp(params.roughness, 0.0f, 1.0f);
   diffuse_albedo_ = params.base_color * (1.0f - metallic);
-  f0_ = glm::mix(glm::vec3(0.04f), params.base_color, metallic);
+  f0_ = glm::mix(glm::vec3(kDielectricF0), params.base_color, metallic);
+  dielectric_cut_ = (1.0f - std::clamp(params.specular, 0.0f, 1.0f)) * (1.0f - metallic);
   alpha_ = std::max(roughness * roughness, kMinAlpha);
   // Duff et al. 2017, "Building an orthonormal basis, revisited": no branch on the axis, and no
   // loss of precision as normal.z approaches -1.
@@ -103,8 +106,13 @@ glm::vec3 Bsdf::to_local(glm::vec3 w) const {
   return {glm::dot(w, tangent_), glm::dot(w, bitangent_), glm::dot(w, normal_)};
 }
 
+glm::vec3 Bsdf::fresnel(float cos_theta) const {
+  // Schlick's F is linear in F0: the dielectric share of the layer scales its own term.
+  return schlick_fresnel(f0_, cos_theta) - dielectric_cut_ * schlick_fresnel(glm::vec3(kDielectricF0), cos_theta);
+}
+
 Bsdf::Lobes Bsdf::lobes(float cos_o) const {
-  const glm::vec3 fresnel = schlick_fresnel(f0_, cos_o);
+  const glm::vec3 fresnel = this->fresnel(cos_o);
   const glm::vec3 diffuse = diffuse_albedo_ * (1.0f - max_component(fresnel));
   const float specular = luminance(fresnel);
   const float total = specular + luminance(diffuse);
@@ -132,7 +140,7 @@ Bsdf::Value Bsdf::evaluate(glm::vec3 wo, glm::vec3 wi) const {
   const float s_i = smith_s(i.z, alpha_);
   // D F G2 / (4 cos_o cos_i) times cos_i, with G2 = 2 cos_o cos_i / (S_o cos_i + S_i cos_o): the
   // cosines cancel, so nothing divides by a vanishing cosine.
-  const glm::vec3 specular = schlick_fresnel(f0_, glm::dot(o, h)) * (d * i.z / (2.0f * (s_o * i.z + s_i * o.z)));
+  const glm::vec3 specular = fresnel(glm::dot(o, h)) * (d * i.z / (2.0f * (s_o * i.z + s_i * o.z)));
   const glm::vec3 diffuse = lobes.diffuse * (i.z / kPi);
   // Visible-normal density G1(wo) D(h) / (4 cos_o) with G1 = 2 cos_o / (cos_o + S_o), per steradian of wi.
   const float specular_pdf = d / (2.0f * (o.z + s_o));

@@ -32,7 +32,7 @@ lightsampler::Addressing addressing(const Texture& texture) {
 
 Emitters::Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampler, std::int64_t frame,
                    double seconds)
-    : scene_(scene) {
+    : scene_(scene), punctual_(scene.lights, bounding_radius(scene.mesh.positions)) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::uint32_t> emission_of_material(scene.materials.size(), kNotLight);
   double decode_ms = 0.0;
@@ -57,6 +57,7 @@ Emitters::~Emitters() = default;
 void Emitters::rebuild_sampler(const lightsampler::SamplerOptions& sampler) {
   const auto start = std::chrono::steady_clock::now();
   sampler_.reset();  // the old one's memory (a GPU's) before the new one's
+  if (count() == 0) return;  // punctual lights alone: nothing to sample by texels
   sampler_ = lightsampler::make_sampler(mesh(), map_views_, sampler);
   integrate();  // its first count, in the set-up (the same integrals after a rebuild)
   const lightsampler::SamplerSetup sampler_setup = sampler_->setup();
@@ -96,7 +97,7 @@ Emitters::Emission Emitters::emission_at(std::uint32_t material_index, std::int6
     if (current && current->factor == e.factor && current->image_frame == e.image_frame) {
       e.radiance = current->radiance;  // only the strength changes: the texels stay
       e.luminance = current->luminance;
-      e.mean_density = current->mean_density / current->strength * e.strength;
+      e.mean_luminance = current->mean_luminance;
       return e;
     }
     const auto start = std::chrono::steady_clock::now();
@@ -111,7 +112,7 @@ Emitters::Emission Emitters::emission_at(std::uint32_t material_index, std::int6
     e.luminance.push_back(luminance(radiance));
     sum += e.luminance.back();
   }
-  e.mean_density = sum / double(e.luminance.size()) * e.strength;
+  e.mean_luminance = sum / double(e.luminance.size());
   return e;
 }
 
@@ -129,6 +130,7 @@ EmissionUpdate Emitters::set_frame(std::int64_t frame, double seconds) {
       continue;
     current = std::move(next);
     map_views_[i] = {current.luminance, current.width, current.height, current.addressing, current.strength};
+    if (!sampler_) continue;  // an emissive material no triangle uses
     const auto start = std::chrono::steady_clock::now();
     sampler_->update_map(i, map_views_[i]);
     update.upload_ms += ms_since(start);

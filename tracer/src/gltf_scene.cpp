@@ -11,6 +11,7 @@
 
 #include "scene_io/gltf_document.h"
 #include "scene_io/input_file.h"
+#include "gltf_lights.h"
 #include "gltf_materials.h"
 
 namespace tracer {
@@ -161,10 +162,15 @@ Scene load_gltf_scene(const std::filesystem::path& file) {
   const auto start = std::chrono::steady_clock::now();
   trs::check_input_file(file);
   const Document document(file);
+  // Extensions the renderer reads; KHR_materials_variants leaves the default materials, which
+  // are what it renders.
+  document.require_only({"KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_animation_pointer",
+                         "KHR_materials_variants"});
   Scene scene;
   scene.file = file;
   read_materials(document, scene);
   read_geometry(document, scene);
+  read_punctual_lights(document, scene);
   scene.camera = first_camera(document);
   scene.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return scene;

@@ -16,8 +16,10 @@ ImageSequence read_image_sequence(const std::filesystem::path& document, const s
   const std::string context = what + ": frames pattern '" + pattern + "'";
   if (!trs::FramePattern::valid(relative.filename().string()))
     throw trs::FileError(document, context + " must have one integer conversion (%d, %04d) in its file name");
-  ImageSequence sequence{document.parent_path() / relative.parent_path(),
-                         trs::FramePattern(relative.filename().string()), 0, 0};
+  // A scene named by its bare file name has no parent: its folder is the working directory.
+  std::filesystem::path folder = document.parent_path() / relative.parent_path();
+  if (folder.empty()) folder = ".";
+  ImageSequence sequence{folder, trs::FramePattern(relative.filename().string()), 0, 0};
   std::vector<std::int64_t> frames;
   std::error_code error;
   for (const auto& entry : std::filesystem::directory_iterator(sequence.directory, error))

@@ -13,7 +13,7 @@ namespace {
 class Resampled : public LightStrategy {
  public:
   explicit Resampled(std::unique_ptr<LightStrategy> source) : source_(std::move(source)) {}
-  std::string name() const override { return "ris"; }
+  std::string name() const override { return to_string(StrategyKind::ris); }
   void begin_frame(std::uint64_t frame) override { source_->begin_frame(frame); }
   void emission_changed() override { source_->emission_changed(); }
   std::optional<LightSample> sample(const LightRandom& random,
@@ -35,16 +35,27 @@ class Resampled : public LightStrategy {
 std::unique_ptr<LightStrategy> make_source(const Emitters& emitters, StrategyKind kind,
                                            const StrategyOptions& options) {
   switch (kind) {
-    case StrategyKind::uniform: return make_uniform_strategy(emitters);
-    case StrategyKind::power: return make_power_strategy(emitters);
+    case StrategyKind::uniform:
+    case StrategyKind::power:
+    case StrategyKind::tree:
+    case StrategyKind::tree_texel: return make_chosen_light_strategy(emitters, kind, options.tree);
     case StrategyKind::trs: return make_trs_strategy(emitters, options);
-    case StrategyKind::tree: return make_tree_strategy(emitters, options);
     case StrategyKind::texel: return make_texel_strategy(emitters);
-    case StrategyKind::tree_texel: return make_tree_texel_strategy(emitters, options);
     case StrategyKind::ris:
     case StrategyKind::automatic: break;
   }
   throw std::invalid_argument(std::string("no light strategy made as ") + to_string(kind));
+}
+
+/// The strategy `kind` over the emissive triangles and the punctual lights: the tree holds them
+/// among its leaves; the others take them beside their draws, by power, as every strategy does
+/// where no triangle emits.
+std::unique_ptr<LightStrategy> make_lights(const Emitters& emitters, StrategyKind kind,
+                                           const StrategyOptions& options) {
+  const bool tree = kind == StrategyKind::tree || kind == StrategyKind::tree_texel;
+  if (emitters.punctual().count() == 0 || (tree && emitters.count() > 0)) return make_source(emitters, kind, options);
+  return with_punctual_lights(emitters, emitters.count() > 0 ? make_source(emitters, kind, options) : nullptr,
+                              to_string(kind));
 }
 
 }  // namespace
@@ -53,13 +64,13 @@ bool resamplable(StrategyKind kind) { return kind != StrategyKind::ris && kind !
 
 std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,
                                                    const StrategyOptions& options) {
-  if (emitters.count() == 0)
-    throw std::invalid_argument("the scene has no emissive triangles to sample");
-  if (options.kind != StrategyKind::ris) return make_source(emitters, options.kind, options);
+  if (emitters.count() == 0 && emitters.punctual().count() == 0)
+    throw std::invalid_argument("the scene has no lights: no emissive triangle and no punctual light");
+  if (options.kind != StrategyKind::ris) return make_lights(emitters, options.kind, options);
   if (!resamplable(options.candidates_from))
     throw std::invalid_argument(std::string("ris cannot draw its candidates from ") +
                                 to_string(options.candidates_from));
-  return std::make_unique<Resampled>(make_source(emitters, options.candidates_from, options));
+  return std::make_unique<Resampled>(make_lights(emitters, options.candidates_from, options));
 }
 
 LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,
@@ -70,24 +81,14 @@ LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1,
 }
 
 const char* to_string(StrategyKind kind) {
-  switch (kind) {
-    case StrategyKind::uniform: return "uniform";
-    case StrategyKind::power: return "power";
-    case StrategyKind::trs: return "trs";
-    case StrategyKind::ris: return "ris";
-    case StrategyKind::tree: return "tree";
-    case StrategyKind::texel: return "texel";
-    case StrategyKind::tree_texel: return "tree-texel";
-    case StrategyKind::automatic: return "auto";
-  }
+  for (const StrategyName& s : kStrategyNames)
+    if (s.kind == kind) return s.name;
   return "?";
 }
 
 std::optional<StrategyKind> parse_strategy(const std::string& name) {
-  for (StrategyKind kind :
-       {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris, StrategyKind::tree,
-        StrategyKind::texel, StrategyKind::tree_texel, StrategyKind::automatic})
-    if (name == to_string(kind)) return kind;
+  for (const StrategyName& s : kStrategyNames)
+    if (name == s.name) return s.kind;
   return std::nullopt;
 }
 

@@ -48,6 +48,18 @@ bool blocked(const Geometry& geometry, const glm::vec3& from, const glm::vec3& f
   return length > 0.0f && geometry.occluded({origin, d / length}, length);
 }
 
+/// Whether the way from a surface point to a punctual light is blocked: up to the light's
+/// position (short of it, so that a fixture the light sits on does not hide it), or without end
+/// towards a directional light.
+bool blocked_towards(const Geometry& geometry, const glm::vec3& from, const glm::vec3& from_normal,
+                     const LightSample& light) {
+  if (light.distant) return geometry.occluded(spawn(from, from_normal, light.position), kInfinity);
+  const glm::vec3 origin = offset(from, from_normal, light.position - from);
+  const glm::vec3 d = light.position - origin;
+  const float length = glm::length(d);
+  return length > 0.0f && geometry.occluded({origin, d / length}, length * (1.0f - 1e-4f));
+}
+
 bool is_black(const glm::vec3& c) { return c.r <= 0.0f && c.g <= 0.0f && c.b <= 0.0f; }
 
 }  // namespace
@@ -136,19 +148,27 @@ struct PathTracer::Connection {
 
 std::optional<PathTracer::Connection> PathTracer::connect(const Vertex& vertex, const Bsdf& bsdf,
                                                           const LightSample& s) const {
-  const glm::vec3 to_light = s.position - vertex.point.position;
-  const float distance = glm::length(to_light);
-  if (!(distance > 0.0f)) return std::nullopt;
-  const glm::vec3 wi = to_light / distance;
-  const glm::vec3 le = s.radiance_towards(-wi);
-  if (is_black(le)) return std::nullopt;
+  glm::vec3 wi, le;
+  float distance, cos_light = 0.0f, pdf;
+  if (s.delta) {  // what the light brings here, and the probability of choosing it
+    wi = s.normal;
+    distance = s.distant ? kInfinity : glm::length(s.position - vertex.point.position);
+    le = s.radiance;
+    pdf = s.pdf;
+  } else {
+    const glm::vec3 to_light = s.position - vertex.point.position;
+    distance = glm::length(to_light);
+    if (!(distance > 0.0f)) return std::nullopt;
+    wi = to_light / distance;
+    le = s.radiance_towards(-wi);
+    cos_light = glm::dot(-wi, s.normal);
+    pdf = solid_angle_density(s.pdf, distance, cos_light);
+  }
+  if (is_black(le) || !(pdf > 0.0f)) return std::nullopt;
   const glm::vec3& ng = vertex.point.geometric_normal;
   if (glm::dot(wi, ng) * glm::dot(vertex.wo, ng) <= 0.0f) return std::nullopt;
   const glm::vec3 f = bsdf.eval(vertex.wo, wi);
   if (is_black(f)) return std::nullopt;
-  const float cos_light = glm::dot(-wi, s.normal);
-  const float pdf = solid_angle_density(s.pdf, distance, cos_light);
-  if (!(pdf > 0.0f)) return std::nullopt;
   return Connection{s, wi, distance, cos_light, f * le / pdf};
 }
 
@@ -196,11 +216,14 @@ glm::vec3 PathTracer::light_sample(const Vertex& vertex, const Bsdf& bsdf, PathR
   if (!kept) return glm::vec3(0.0f);
   const glm::vec3& ng = vertex.point.geometric_normal;
   ++rays;
-  if (blocked(geometry_, vertex.point.position, ng, kept->light.position, kept->light.normal))
+  const LightSample& light = kept->light;
+  if (light.delta ? blocked_towards(geometry_, vertex.point.position, ng, light)
+                  : blocked(geometry_, vertex.point.position, ng, light.position, light.normal))
     return glm::vec3(0.0f);
-  const float mis = power_heuristic(
-      solid_angle_density(kept->light.mis_pdf, kept->distance, kept->cos_light),
-      bsdf.pdf(vertex.wo, kept->wi));
+  // No BSDF sample finds a delta light: its sample takes the whole weight.
+  const float mis = light.delta ? 1.0f
+                                : power_heuristic(solid_angle_density(light.mis_pdf, kept->distance, kept->cos_light),
+                                                  bsdf.pdf(vertex.wo, kept->wi));
   // One candidate: weight_sum / kept_weight is one, the plain estimate.
   const float resampling = candidates_ == 1 ? 1.0f : weight_sum / (float(candidates_) * kept_weight);
   return kept->unshadowed * (mis * resampling);

@@ -139,7 +139,7 @@ struct Renderer::State {
         settings(r),
         frame(f),
         geometry(s.mesh),
-        emitters(s, sampler_options(r), f, double(f) / r.fps),
+        emitters(s, sampler_options(r), f, animation_seconds(f, r.fps)),
         choice(choose(lit(emitters, s), r)),
         strategy(make_light_strategy(emitters, choice.options)),
         camera(scene_camera(s), r.width, r.height) {}
@@ -163,7 +163,7 @@ EmissionUpdate Renderer::set_frame(std::int64_t frame) {
   State& s = *state_;
   s.frame = frame;
   s.sums.reset();
-  EmissionUpdate update = s.emitters.set_frame(frame, double(frame) / s.settings.fps);
+  EmissionUpdate update = s.emitters.set_frame(frame, animation_seconds(frame, s.settings.fps));
   if (update.changed()) {
     const auto start = Clock::now();
     s.strategy->emission_changed();
@@ -263,6 +263,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   result.first_frame_seconds = s.first_frame_seconds;
   result.strategy = s.strategy->name();
   result.strategy_choice = s.choice;
+  result.punctual_lights = s.emitters.punctual().count();
   result.light_device = s.strategy->device();
   result.light_structure = s.strategy->setup();
   result.frames = sums.frames;

@@ -26,6 +26,7 @@ constexpr double kGainSamples = 65536;
 constexpr std::uint64_t kGainSeed = 0x7e4e1a9a1ull;
 
 double texel_gain(const Emitters& emitters) {
+  if (emitters.count() == 0) return 1.0;  // punctual lights alone: no texels to draw by
   lightsampler::Frame frame;
   lightsampler::FrameRequest request;
   request.seed = kGainSeed;

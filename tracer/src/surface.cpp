@@ -33,7 +33,7 @@ SurfacePoint surface_point(const Scene& scene, const Hit& hit) {
 }
 
 SurfaceParams surface_params(const Scene& scene, const Material& material, glm::vec2 uv) {
-  SurfaceParams params{material.base_color, material.metallic, material.roughness};
+  SurfaceParams params{material.base_color, material.metallic, material.roughness, material.specular};
   if (material.base_color_texture != kNoTexture)
     params.base_color *= lookup(scene.textures[std::size_t(material.base_color_texture)], uv);
   if (material.metallic_roughness_texture != kNoTexture) {

@@ -11,9 +11,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
 #include <glm/glm.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace trs::gltf {
@@ -29,6 +31,9 @@ class Document {
   const tinygltf::Model& model() const { return model_; }
 
   [[noreturn]] void fail(const std::string& problem) const;
+  /// Fails naming the first extension the file requires (extensionsRequired) that is not in
+  /// `implemented`: a reader that ignored it would show something else than the file's author saw.
+  void require_only(std::initializer_list<std::string_view> implemented) const;
 
   /// A relative URI of the document (percent-encoded, as glTF stores it) as a path.
   std::filesystem::path resolve_uri(const std::string& uri) const;

@@ -13,6 +13,9 @@ struct SurfaceParams {
   glm::vec3 base_color{1.0f};  ///< linear
   float metallic = 0.0f;
   float roughness = 1.0f;      ///< perceptual; GGX alpha = roughness^2
+  /// The dielectric specular layer's weight (KHR_materials_specular's specularFactor): 0 leaves
+  /// a dielectric Lambertian, its base colour its albedo.
+  float specular = 1.0f;
 };
 
 struct BsdfSample {
@@ -46,12 +49,15 @@ class Bsdf {
     float pdf = 0.0f;
   };
 
+  /// The layer's Fresnel reflectance at cosine `cos_theta` from the microfacet normal.
+  glm::vec3 fresnel(float cos_theta) const;
   Lobes lobes(float cos_o) const;
   Value evaluate(glm::vec3 wo, glm::vec3 wi) const;
   glm::vec3 to_local(glm::vec3 w) const;
 
   glm::vec3 diffuse_albedo_;  ///< base_color (1 - metallic), before the specular layer's share
   glm::vec3 f0_;              ///< Fresnel reflectance at normal incidence
+  float dielectric_cut_;      ///< (1 - specular) (1 - metallic): the dielectric Fresnel taken off
   float alpha_;               ///< GGX roughness, floored
   glm::vec3 tangent_, bitangent_, normal_;  ///< orthonormal frame; normal_ as given, either side
 };

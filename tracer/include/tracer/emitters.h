@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 #include <lightsampler/backend.h>
 
+#include "tracer/punctual_lights.h"
 #include "tracer/scene.h"
 
 namespace tracer {
@@ -77,7 +78,10 @@ class Emitters {
   std::span<const double> light_density() const { return light_density_; }
   /// The density a light's emission map has on average over the whole map, whatever part of it
   /// the light's UVs cover: mean texel luminance times strength.
-  double mean_density(std::uint32_t light) const { return emissions_[light_maps_[light]].mean_density; }
+  double mean_density(std::uint32_t light) const {
+    const Emission& e = emissions_[light_maps_[light]];
+    return e.mean_luminance * e.strength;
+  }
 
   glm::vec3 position(std::uint32_t light, float b1, float b2) const;
   /// The light's corners, in the order its barycentrics weigh them (b1: second, b2: third).
@@ -89,8 +93,11 @@ class Emitters {
   /// The lights as the sampler's inputs (valid while this object lives).
   lightsampler::MeshView mesh() const;
   std::span<const lightsampler::DensityMapView> maps() const { return map_views_; }
+  /// The scene's punctual lights, sampled beside the emissive triangles.
+  const PunctualLights& punctual() const { return punctual_; }
+
   /// The light sampler over the lights: the texel lookups and per-light integrals every
-  /// strategy uses, and the point lights of `trs`.
+  /// strategy uses, and the point lights of `trs`. None where no triangle emits.
   lightsampler::Sampler& sampler() const { return *sampler_; }
   /// Builds the light sampler again with `sampler`'s options (a subdivision decided after the
   /// emitters were built: `auto`'s); the lights and their integrals stay as they are.
@@ -108,7 +115,7 @@ class Emitters {
     lightsampler::Addressing addressing = lightsampler::Addressing::wrap;
     float strength = 1.0f;
     bool double_sided = false;
-    double mean_density = 0.0;  ///< mean of `luminance` times strength
+    double mean_luminance = 0.0;  ///< mean of `luminance`, the strength not applied
     // What the emission shows now, to tell a change of frame that changes it.
     glm::vec3 factor{0.0f};
     std::int64_t image_frame = 0;  ///< of the texture's sequence
@@ -122,6 +129,7 @@ class Emitters {
   void integrate();
 
   const Scene& scene_;
+  PunctualLights punctual_;
   std::vector<std::uint32_t> scene_triangles_;
   std::vector<std::uint32_t> lights_of_scene_;  ///< per scene triangle; kNotLight if none
   std::vector<Emission> emissions_;

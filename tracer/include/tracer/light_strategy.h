@@ -24,15 +24,20 @@ struct alignas(64) LightSample {
   glm::vec3 position;
   /// Area density (per world area) the estimator divides by.
   float pdf;
-  glm::vec3 normal;  ///< unit geometric normal of the light's front face
+  glm::vec3 normal;  ///< unit geometric normal of the light's front face; for a delta sample, towards the light
   /// Area density at this point as pdf() gives it, for MIS weights. Equal to `pdf` except for
   /// point-light sets, whose estimator carries the set's size (see TrsStrategy).
   float mis_pdf;
   glm::vec3 radiance;  ///< emitted towards the front, and towards the back if two_sided
-  std::uint32_t light;
+  std::uint32_t light;  ///< an emissive triangle, or for a delta sample a punctual light
   float b1;
   float b2;
   bool two_sided;
+  /// A punctual light (PunctualLights): `radiance` is the irradiance it brings to the shading
+  /// point it was drawn for, `pdf` the probability of choosing it, and no BSDF sample finds it.
+  bool delta = false;
+  /// A directional light: `position` is the unit direction towards it.
+  bool distant = false;
 
   /// Radiance leaving the point towards unit direction `w`.
   glm::vec3 radiance_towards(glm::vec3 w) const {
@@ -190,7 +195,27 @@ StrategyChoice choose_strategy(const Emitters& emitters, const StrategyOptions& 
 std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,
                                                    const StrategyOptions& options);
 
+/// A strategy and its name, as the command line, the stats and Python spell it.
+struct StrategyName {
+  StrategyKind kind;
+  const char* name;
+};
+
+/// Every strategy by name, in the order trs-render's help and trs_render.STRATEGIES list them.
+inline constexpr std::array<StrategyName, 8> kStrategyNames = {{
+    {StrategyKind::uniform, "uniform"},
+    {StrategyKind::power, "power"},
+    {StrategyKind::trs, "trs"},
+    {StrategyKind::ris, "ris"},
+    {StrategyKind::tree, "tree"},
+    {StrategyKind::texel, "texel"},
+    {StrategyKind::tree_texel, "tree-texel"},
+    {StrategyKind::automatic, "auto"},
+}};
+
+/// The name kStrategyNames gives `kind`.
 const char* to_string(StrategyKind kind);
+/// The strategy kStrategyNames calls `name`; none for a name it lacks.
 std::optional<StrategyKind> parse_strategy(const std::string& name);
 const char* to_string(TreeImportance importance);
 const char* to_string(TreePower power);

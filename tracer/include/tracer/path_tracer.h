@@ -1,7 +1,8 @@
 #pragma once
 // Unidirectional path tracing with next-event estimation: at every surface point one light
 // sample from the strategy and one BSDF sample, combined by multiple importance sampling with
-// the power heuristic. Lights are the scene's emissive triangles; there is no environment.
+// the power heuristic. Lights are the scene's emissive triangles and its punctual lights, which
+// no BSDF sample finds; there is no environment.
 
 #include <optional>
 

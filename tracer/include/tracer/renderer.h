@@ -17,6 +17,9 @@
 
 namespace tracer {
 
+/// Seconds into the scene's animation of frame `frame`, at `fps` frames per second.
+inline double animation_seconds(std::int64_t frame, double fps) { return double(frame) / fps; }
+
 struct RenderSettings {
   unsigned width = 640;
   unsigned height = 360;
@@ -27,7 +30,7 @@ struct RenderSettings {
   /// Animation frame f renders with its own random streams, from seed ^ mix64(f): frame 0's are
   /// a still image's.
   std::uint64_t seed = 0;
-  /// Animation frames per second: frame f is f / fps seconds into the scene's animation.
+  /// Animation frames per second: frame f is animation_seconds(f, fps) into the scene's animation.
   double fps = 24.0;
   unsigned threads = 0;     ///< paths and CPU light sampler; 0: every hardware thread
   StrategyOptions strategy;
@@ -80,6 +83,7 @@ struct RenderResult {
   bool interrupted = false;           ///< stopped early by the cancel flag (not by the deadline)
   std::string strategy;               ///< the strategy that rendered
   StrategyChoice strategy_choice;     ///< its options, and for `auto` why it was chosen
+  std::uint32_t punctual_lights = 0;  ///< the scene's punctual lights, sampled beside its emission
   std::string light_device;           ///< the light sampler's backend and device, if any
 };
 

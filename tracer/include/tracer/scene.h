@@ -1,6 +1,6 @@
 #pragma once
 // A scene as the tracer renders it: one world-space triangle mesh, its materials and textures
-// (linear, decoded at load time), and a camera. Loaders fill it; nothing here knows glTF.
+// (linear, decoded at load time), its punctual lights, and a camera. Loaders fill it; nothing here knows glTF.
 
 #include <algorithm>
 #include <cstdint>
@@ -71,6 +71,7 @@ struct Material {
   float metallic = 1.0f;
   float roughness = 1.0f;
   std::int32_t metallic_roughness_texture = kNoTexture;
+  float specular = 1.0f;  ///< the dielectric specular layer's weight (SurfaceParams::specular)
   /// Emitted radiance = emissive_factor * emissive texture * emissive_strength
   /// (KHR_materials_emissive_strength), in linear Rec.709.
   glm::vec3 emissive_factor{0.0f};
@@ -108,6 +109,23 @@ struct Mesh {
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
 
+/// A light without area (glTF's KHR_lights_punctual), in the renderer's radiometric units: the
+/// file's candela and lux over 683 lm/W, as Blender's glTF importer converts them
+/// (docs/renderer.md, "Punctual lights").
+struct PunctualLight {
+  enum class Kind : std::uint8_t { point, spot, directional };
+  Kind kind = Kind::point;
+  std::string name;  ///< for messages and reports: "light 2 'Sun'"
+  glm::vec3 position{0.0f};                  ///< point and spot
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};    ///< spot and directional: unit, the way the light travels
+  /// Point and spot: radiant intensity, W/sr, along the spot's axis. Directional: irradiance on
+  /// a surface facing it, W/m^2. Linear Rec.709.
+  glm::vec3 intensity{0.0f};
+  float cos_inner = 1.0f;  ///< spot: full intensity inside this cone
+  float cos_outer = 0.0f;  ///< spot: none outside this one
+  float range = 0.0f;      ///< point and spot: 0 where the file gives none (no cut-off)
+};
+
 /// A pinhole camera. `aspect` of zero: take the image's.
 struct Camera {
   glm::vec3 position{0.0f};
@@ -122,6 +140,7 @@ struct Scene {
   Mesh mesh;
   std::vector<Material> materials;
   std::vector<Texture> textures;
+  std::vector<PunctualLight> lights;  ///< in the order of the nodes that place them
   std::optional<Camera> camera;  ///< the first camera of the scene's node hierarchy, if any
   /// What loading took, for reports: in all, and of that decoding the texture images.
   double load_seconds = 0.0;

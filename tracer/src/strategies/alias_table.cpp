@@ -4,12 +4,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "strategies/unit_interval.h"
+
 namespace tracer::alias {
 namespace {
 
 __extension__ using Uint128 = unsigned __int128;  // GCC's and Clang's; ISO C++ has none
 
-constexpr double kBelowOne = 0x1.fffffffffffffp-1;
 
 }  // namespace
 
@@ -53,7 +54,7 @@ Pick sample(std::span<const Column> columns, std::uint64_t word) {
   const Column& c = columns[column];
   const double threshold = c.threshold;
   if (coin < threshold) return {column, coin / threshold};
-  return {c.alias, std::min((coin - threshold) / (1.0 - threshold), kBelowOne)};
+  return {c.alias, below_one((coin - threshold) / (1.0 - threshold))};
 }
 
 double probability(std::span<const Column> columns, std::size_t index) {

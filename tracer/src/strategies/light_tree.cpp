@@ -8,6 +8,9 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include "luminance.h"
+#include "strategies/unit_interval.h"
+
 namespace tracer {
 namespace {
 
@@ -20,8 +23,6 @@ constexpr unsigned kMaxDepth = 63;
 constexpr std::uint64_t kNotInTree = ~std::uint64_t(0);
 /// Subtrees of this many lights or more are built as tasks of their own.
 constexpr std::size_t kParallelLights = 1024;
-/// The largest double below one: where the walk's remapped uniform must stay.
-constexpr double kBelowOne = 1.0 - 0x1p-53;
 
 double angle(float cos_theta) { return std::acos(std::clamp(double(cos_theta), -1.0, 1.0)); }
 
@@ -89,6 +90,24 @@ LightBounds triangle_bounds(const std::array<glm::vec3, 3>& vertices, glm::vec3 
   b.axis = normal;
   b.cos_theta_o = two_sided ? -1.0f : 1.0f;
   b.cos_theta_e = 0.0f;
+  b.power = power;
+  b.set_derived();
+  return b;
+}
+
+/// A point or spot light, as pbrt-v4 bounds them: its position; a point light emits every way, a
+/// spot within its inner cone at full power and out to its outer cone.
+LightBounds punctual_bounds(const PunctualLight& light, float power) {
+  LightBounds b;
+  b.lower = b.upper = light.position;
+  b.axis = light.direction;
+  if (light.kind == PunctualLight::Kind::spot) {
+    b.cos_theta_o = light.cos_inner;
+    b.cos_theta_e = float(std::cos(angle(light.cos_outer) - angle(light.cos_inner)));
+  } else {
+    b.cos_theta_o = -1.0f;
+    b.cos_theta_e = 0.0f;
+  }
   b.power = power;
   b.set_derived();
   return b;
@@ -200,23 +219,31 @@ struct LightTree::Build {
 };
 
 std::vector<double> tree_power(const Emitters& emitters, TreePower source) {
-  std::vector<double> power(emitters.count());
+  const PunctualLights& punctual = emitters.punctual();
+  std::vector<double> power(emitters.count() + punctual.count(), 0.0);
   for (std::uint32_t light = 0; light < emitters.count(); ++light) {
     const double one_face = source == TreePower::exact ? emitters.light_density()[light]
                                                        : emitters.area(light) * emitters.mean_density(light);
     power[light] = emitters.two_sided(light) ? 2.0 * one_face : one_face;
   }
+  // A triangle's power here is its emitted power over pi; pbrt-v4 bounds a point or spot light
+  // with 4 pi I, which is 4 I over pi. Directional lights stay out of the tree.
+  for (std::uint32_t i = 0; i < punctual.count(); ++i) {
+    if (punctual[i].kind != PunctualLight::Kind::directional)
+      power[emitters.count() + i] = 4.0 * double(luminance(punctual[i].intensity));
+  }
   return power;
 }
 
-LightTree::LightTree(const Emitters& emitters, std::span<const double> power)
-    : trails_(emitters.count(), kNotInTree) {
+LightTree::LightTree(const Emitters& emitters, std::span<const double> power) : trails_(power.size(), kNotInTree) {
   std::vector<Build::Item> items;
-  for (std::uint32_t light = 0; light < emitters.count(); ++light) {
+  for (std::uint32_t light = 0; light < power.size(); ++light) {
     const auto phi = float(power[light]);
     if (!(phi > 0.0f)) continue;  // never sampled: left out
-    const LightBounds b = triangle_bounds(emitters.vertices(light), emitters.normal(light),
-                                          emitters.two_sided(light), phi);
+    const LightBounds b = light < emitters.count()
+                              ? triangle_bounds(emitters.vertices(light), emitters.normal(light),
+                                                emitters.two_sided(light), phi)
+                              : punctual_bounds(emitters.punctual()[light - emitters.count()], phi);
     items.push_back({b, b.centre(), light});
   }
   if (items.empty()) return;  // the lights emit nothing (a dark frame)
@@ -245,7 +272,7 @@ std::optional<LightTree::Pick> LightTree::sample(double u, const ShadingPoint& a
     // a walk reads a few bits of u at each level, so it keeps them in double precision.
     const double p = *first;
     const int child = u < p ? 0 : 1;
-    u = std::min(child == 0 ? u / p : (u - p) / (1.0 - p), kBelowOne);
+    u = below_one(child == 0 ? u / p : (u - p) / (1.0 - p));
     pmf *= branch_probability(*first, child);
     index = child == 0 ? index + 1 : node.index;
   }

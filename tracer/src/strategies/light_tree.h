@@ -1,5 +1,5 @@
 #pragma once
-// A bounding volume hierarchy over the emissive triangles, one light per leaf, each node bounding
+// A bounding volume hierarchy over the emissive triangles and the point and spot lights, one light per leaf, each node bounding
 // where its lights are, which way they emit and how much (Conty Estevez and Kulla, "Importance
 // Sampling of Many Lights with Adaptive Tree Splitting", 2018; pbrt-v4's BVHLightSampler). From a
 // shading point, a walk from the root picks a light, choosing at each node between its two
@@ -66,14 +66,16 @@ class NodeImportance {
                                                        const ShadingPoint& at) const = 0;
 };
 
-/// The lights' powers as the tree weighs them: emitted power in luminance, twice for two-sided
-/// lights (they emit from both faces).
+/// The lights' powers as the tree weighs them, the triangles' then the punctual lights': emitted
+/// power in luminance over pi, twice for two-sided triangles (they emit from both faces); 4 I
+/// for point and spot lights (pbrt-v4's bounds); zero for directional lights, which the tree
+/// leaves out.
 std::vector<double> tree_power(const Emitters& emitters, TreePower source);
 
 class LightTree {
  public:
-  /// Over the lights whose `power` (one per light) is positive; empty when none is (nothing
-  /// is sampled).
+  /// Over the lights whose `power` (one per light, numbered as tree_power numbers them) is
+  /// positive; empty when none is (nothing is sampled).
   LightTree(const Emitters& emitters, std::span<const double> power);
 
   struct Pick {

@@ -1,20 +1,34 @@
 #pragma once
-// The strategies behind make_light_strategy, one file each.
+// The strategies behind make_light_strategy.
 
 #include <memory>
+#include <string>
 
 #include "tracer/light_strategy.h"
 
 namespace tracer {
 
-std::unique_ptr<LightStrategy> make_uniform_strategy(const Emitters& emitters);
-std::unique_ptr<LightStrategy> make_power_strategy(const Emitters& emitters);
-std::unique_ptr<LightStrategy> make_trs_strategy(const Emitters& emitters,
-                                                 const StrategyOptions& options);
-std::unique_ptr<LightStrategy> make_tree_strategy(const Emitters& emitters,
-                                                  const StrategyOptions& options);
+class LightChoice;
+class TrianglePoint;
+
+/// A light chosen by `choice`, then a point on a chosen triangle by `point` (chosen_light.cpp).
+std::unique_ptr<LightStrategy> make_chosen_light_strategy(const Emitters& emitters, std::unique_ptr<LightChoice> choice,
+                                                          std::unique_ptr<TrianglePoint> point, std::string name);
+/// `uniform`, `power`, `tree` or `tree-texel`: the choice and the point `kind` pairs.
+std::unique_ptr<LightStrategy> make_chosen_light_strategy(const Emitters& emitters, StrategyKind kind,
+                                                          const TreeOptions& tree);
+
+/// The joint draws over every emitter: `trs`'s per-frame point set and `texel`'s alias table.
+std::unique_ptr<LightStrategy> make_trs_strategy(const Emitters& emitters, const StrategyOptions& options);
 std::unique_ptr<LightStrategy> make_texel_strategy(const Emitters& emitters);
-std::unique_ptr<LightStrategy> make_tree_texel_strategy(const Emitters& emitters,
-                                                        const StrategyOptions& options);
+
+/// `area`'s draws over the emissive triangles (none where no triangle emits) and the scene's
+/// punctual lights beside them, chosen by power (punctual.cpp); named `name`.
+std::unique_ptr<LightStrategy> with_punctual_lights(const Emitters& emitters, std::unique_ptr<LightStrategy> area,
+                                                    std::string name);
+/// Punctual light `light` seen from `at`, chosen with probability `pmf`: a delta sample of the
+/// irradiance it brings; none where it brings nothing.
+std::optional<LightSample> punctual_sample(const Emitters& emitters, std::uint32_t light, double pmf,
+                                           const ShadingPoint& at);
 
 }  // namespace tracer

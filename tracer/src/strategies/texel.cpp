@@ -12,25 +12,23 @@
 #include "strategies/alias_table.h"
 #include "strategies/piece_table.h"
 #include "strategies/strategies.h"
+#include "strategies/unit_interval.h"
 
 namespace tracer {
 namespace {
-
-/// float(u) below 1, for the uniforms that choices leave over.
-float below_one(double u) { return std::min(float(u), 0x1.fffffep-1f); }
 
 class TexelStrategy : public LightStrategy {
  public:
   explicit TexelStrategy(const Emitters& emitters) : emitters_(emitters) { build(); }
 
-  std::string name() const override { return "texel"; }
+  std::string name() const override { return to_string(StrategyKind::texel); }
   void emission_changed() override { build(); }
 
   std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint&) const override {
     if (!alias_) return std::nullopt;  // the lights emit nothing
     const alias::Pick pick = alias_->sample(word64(random, 0));
     const std::uint32_t light = table_->light(pick.index);
-    const lightsampler::Barycentrics b = table_->point(pick.index, below_one(pick.u),
+    const lightsampler::Barycentrics b = table_->point(pick.index, below_one_float(pick.u),
                                                        lightsampler::uniform_float(random[2]),
                                                        lightsampler::uniform_float(random[3]));
     // Rounding can put a point on its cell's edge into the neighbouring texel: its density is

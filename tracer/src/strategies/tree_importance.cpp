@@ -143,7 +143,9 @@ class CyclesImportance : public NodeImportance {
 
  private:
   ImportanceRange range(const LightTreeNode& node, const ShadingPoint& at) const {
-    if (!node.leaf) return cycles_range(node.bounds, box_extent(node.bounds, at.position), at.normal);
+    // A punctual light is its box, a point.
+    if (!node.leaf || node.index >= emitters_.count())
+      return cycles_range(node.bounds, box_extent(node.bounds, at.position), at.normal);
     const Extent e = triangle_extent(emitters_.vertices(node.index), node.bounds, at.position);
     // A one-sided triangle lights nothing behind its plane.
     const bool front_facing = node.bounds.cos_theta_o < 1.0f || glm::dot(node.bounds.axis, e.to_centre) < 0.0f;

@@ -62,7 +62,7 @@ class TrsStrategy : public LightStrategy {
       throw std::invalid_argument("trs takes 1 to 2^32 - 1 lights per frame");
   }
 
-  std::string name() const override { return "trs"; }
+  std::string name() const override { return to_string(StrategyKind::trs); }
 
   void begin_frame(std::uint64_t frame) override {
     const std::uint64_t seed = lightsampler::mix64(seed_ ^ lightsampler::mix64(frame));

@@ -1,0 +1,48 @@
+#pragma once
+// Which light a next-event query draws from, and with what probability (pbrt-v4's
+// LightSampler): in proportion to a weight per triangle (its area or its power), or by a walk
+// down the light tree from the shading point. Lights are numbered as the emitters number their
+// triangles, then the punctual lights after them (Emitters::count() + i): the tree holds point
+// and spot lights as leaves beside the triangles and chooses directional lights apart, as
+// pbrt-v4's BVHLightSampler chooses its infinite lights.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include "tracer/light_strategy.h"
+
+namespace tracer {
+
+class NodeImportance;
+
+struct LightPick {
+  std::uint32_t light;
+  double pmf;
+};
+
+class LightChoice {
+ public:
+  virtual ~LightChoice() = default;
+  /// How many of a query's random words the choice reads, from the first; the point on the
+  /// light reads the ones after.
+  virtual int words() const = 0;
+  /// A light for `at`; none when no light can reach it.
+  virtual std::optional<LightPick> pick(const LightRandom& random, const ShadingPoint& at) const = 0;
+  /// The probability that pick() gives `light` for `at`.
+  virtual double pmf(std::uint32_t light, const ShadingPoint& at) const = 0;
+  /// The emission changed: the weights follow.
+  virtual void emission_changed() {}
+  virtual StrategySetup setup() const { return {}; }
+};
+
+/// Each triangle in proportion to its area (`uniform`); punctual lights are not among them.
+std::unique_ptr<LightChoice> make_area_choice(const Emitters& emitters);
+/// Each triangle in proportion to its emitted power (`power`); punctual lights are not among them.
+std::unique_ptr<LightChoice> make_power_choice(const Emitters& emitters);
+/// The light tree over the triangles and the punctual lights, its walk weighing a node's children
+/// with `importance`.
+std::unique_ptr<LightChoice> make_tree_choice(const Emitters& emitters, TreePower power,
+                                              std::unique_ptr<const NodeImportance> importance);
+
+}  // namespace tracer

@@ -1,0 +1,113 @@
+// Punctual lights beside the emissive triangles: one choice by power between the triangles'
+// strategy, as a whole, and each punctual light, as pbrt-v4's PowerLightSampler chooses among
+// all its lights; the triangles' emitted power is pi times their luminance integrals (twice
+// that where they emit from both faces). A punctual light is a delta light: its sample carries
+// the probability of choosing it and the irradiance it brings, and no BSDF sample finds it.
+
+#include <algorithm>
+#include <numbers>
+
+#include <lightsampler/random.h>
+
+#include "strategies/strategies.h"
+
+namespace tracer {
+namespace {
+
+class PunctualMixture : public LightStrategy {
+ public:
+  PunctualMixture(const Emitters& emitters, std::unique_ptr<LightStrategy> area, std::string name)
+      : emitters_(emitters), area_(std::move(area)), name_(std::move(name)) {
+    set_weights();
+  }
+
+  std::string name() const override { return name_; }
+  void begin_frame(std::uint64_t frame) override {
+    if (area_) area_->begin_frame(frame);
+  }
+  void emission_changed() override {
+    if (area_) area_->emission_changed();
+    set_weights();
+  }
+
+  std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
+    // Words 6 and 7: no strategy of the triangles reads them.
+    const double u = uniform53(random, 6);
+    if (u < area_probability_) {
+      std::optional<LightSample> s = area_->sample(random, at);
+      if (s) {
+        s->pdf *= float(area_probability_);
+        s->mis_pdf *= float(area_probability_);
+      }
+      return s;
+    }
+    const auto light = std::uint32_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
+    if (light >= cdf_.size()) return std::nullopt;
+    const double pmf = cdf_[light] - (light > 0 ? cdf_[light - 1] : area_probability_);
+    if (!(pmf > 0.0)) return std::nullopt;
+    return punctual_sample(emitters_, light, pmf, at);
+  }
+
+  void prefetch(const LightRandom& random) const override {
+    if (area_) area_->prefetch(random);
+  }
+
+  float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
+    return area_ ? float(area_probability_) * area_->pdf(light, b1, b2, from) : 0.0f;
+  }
+
+  LightFrame last_frame() const override { return area_ ? area_->last_frame() : LightFrame{}; }
+  std::string device() const override { return area_ ? area_->device() : std::string(); }
+  StrategySetup setup() const override { return area_ ? area_->setup() : StrategySetup{}; }
+
+ private:
+  /// The choice's CDF: the triangles first, [0, area_probability_), then each punctual light.
+  void set_weights() {
+    double area = 0.0;
+    if (area_) {
+      const std::span<const double> integrals = emitters_.light_density();
+      for (std::uint32_t i = 0; i < emitters_.count(); ++i)
+        area += integrals[i] * (emitters_.two_sided(i) ? 2.0 : 1.0);
+      area *= std::numbers::pi;
+    }
+    const PunctualLights& punctual = emitters_.punctual();
+    cdf_.assign(punctual.count(), 0.0);
+    double total = area;
+    for (std::uint32_t i = 0; i < punctual.count(); ++i) cdf_[i] = total += punctual.power(i);
+    if (!(total > 0.0)) {  // nothing emits (a dark frame): nothing to sample
+      area_probability_ = 0.0;
+      cdf_.assign(punctual.count(), 0.0);
+      return;
+    }
+    area_probability_ = area / total;
+    for (double& c : cdf_) c /= total;
+    if (!cdf_.empty()) cdf_.back() = 1.0;
+  }
+
+  const Emitters& emitters_;
+  std::unique_ptr<LightStrategy> area_;  ///< none where no triangle emits
+  std::string name_;
+  double area_probability_ = 0.0;
+  std::vector<double> cdf_;  ///< inclusive, per punctual light, after the triangles' share
+};
+
+}  // namespace
+
+std::optional<LightSample> punctual_sample(const Emitters& emitters, std::uint32_t light, double pmf,
+                                           const ShadingPoint& at) {
+  const PunctualLi li = emitters.punctual().li(light, at.position);
+  if (!(li.li.r > 0.0f || li.li.g > 0.0f || li.li.b > 0.0f)) return std::nullopt;
+  const bool distant = emitters.punctual()[light].kind == PunctualLight::Kind::directional;
+  LightSample s{distant ? li.wi : emitters.punctual()[light].position, float(pmf), li.wi, 0.0f, li.li, light,
+                0.0f, 0.0f, false};
+  s.delta = true;
+  s.distant = distant;
+  return s;
+}
+
+std::unique_ptr<LightStrategy> with_punctual_lights(const Emitters& emitters, std::unique_ptr<LightStrategy> area,
+                                                    std::string name) {
+  return std::make_unique<PunctualMixture>(emitters, std::move(area), std::move(name));
+}
+
+}  // namespace tracer
