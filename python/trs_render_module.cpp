@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/relmse.h"
 #include "lightsampler/backend.h"
 #include "options.h"
 #include "report.h"
@@ -56,15 +57,10 @@ std::vector<std::string> arguments(const py::object& scene, const py::kwargs& op
 
 /// The options, or ValueError with the parser's message.
 trs::RenderOptions parse(const py::object& scene, const py::kwargs& options) {
-  std::ostringstream errors;
-  auto parsed = trs::parse_render_options(arguments(scene, options), errors, false);
+  auto parsed = trs::parse_render_arguments(arguments(scene, options), false);
   if (auto* o = std::get_if<trs::RenderOptions>(&parsed)) return std::move(*o);
-  std::string message = errors.str();
-  for (const std::string prefix : {"trs-render: error: "})
-    if (message.starts_with(prefix)) message.erase(0, prefix.size());
-  if (const std::size_t help = message.find("\nRun with --help"); help != std::string::npos) message.erase(help);
-  while (!message.empty() && message.back() == '\n') message.pop_back();
-  throw py::value_error(message.empty() ? "the options ask for nothing to render" : message);
+  const trs::NoRender& stop = std::get<trs::NoRender>(parsed);
+  throw py::value_error(stop.error.empty() ? "the options ask for nothing to render" : stop.error);
 }
 
 /// `values` (moved, not copied) as a numpy array of `shape`.
@@ -78,13 +74,11 @@ py::dict dict_of(const std::string& json) {
   return py::module_::import("json").attr("loads")(json);
 }
 
-/// Warnings of a run (trs-render's standard error) as Python warnings, one per line.
-void warn(const std::string& text) {
-  std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) {
-    if (line.starts_with("trs-render: warning: ")) line.erase(0, 21);
-    if (!line.empty()) PyErr_WarnEx(PyExc_RuntimeWarning, line.c_str(), 1);
-  }
+/// A note of a run as a Python warning: a warning's sentence alone, what an interrupted run saved
+/// as trs-render prints it.
+void warn(const trs::RunNote& note) {
+  const std::string text = note.kind == trs::RunNote::Kind::warning ? note.text : trs::note_line(note);
+  PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 1);
 }
 
 /// Ctrl-C in Python while a render runs without the GIL: checked after each frame; the run then
@@ -124,18 +118,19 @@ py::object render(const py::object& scene, const py::kwargs& kwargs) {
   const trs::RenderOptions options = parse(scene, kwargs);
   if (options.plan_chunk) throw py::value_error("--plan prints trs-render commands: run trs-render for it");
   std::vector<Image> images;
-  std::ostringstream out, err;
+  std::ostringstream out;
+  std::vector<trs::RunNote> notes;  // kept until the GIL is back
   InterruptCheck interrupt;
   {
     py::gil_scoped_release release;
     trs::render(options, start,
-                {interrupt.cancel(), out, err,
+                {interrupt.cancel(), out, [&](const trs::RunNote& note) { notes.push_back(note); },
                  [&](std::int64_t frame, const tracer::RenderResult& result, const nlohmann::json& stats) {
                    images.push_back({frame, result, stats.dump()});
                  },
                  std::ref(interrupt)});
   }
-  warn(err.str());
+  for (const trs::RunNote& note : notes) warn(note);
   interrupt.raise_if_interrupted();
   if (!options.frames) return image_and_stats(images.at(0));
   py::list sequence;
@@ -156,7 +151,7 @@ class PyRenderer {
   PyRenderer(const py::object& scene, std::int64_t frame, const py::kwargs& kwargs)
       : options_(parse(scene, refuse_run_options(kwargs))), frame_(frame) {
     py::gil_scoped_release release;
-    scene_ = std::make_unique<tracer::Scene>(tracer::load_gltf_scene(options_.scene));
+    scene_ = std::make_unique<tracer::Scene>(trs::load_scene(options_));
     renderer_.emplace(trs::make_renderer(*scene_, options_, frame));
   }
 
@@ -186,7 +181,7 @@ class PyRenderer {
   std::int64_t frame() const { return frame_; }
 
   py::dict stats() const {
-    trs::SequenceFrame sequence{frame_, double(frame_) / options_.render.fps, {}};
+    trs::SequenceFrame sequence{frame_, tracer::animation_seconds(frame_, options_.render.fps), {}};
     return dict_of(trs::stats_json(options_, last_, last_.setup_seconds + last_.render_seconds, sequence).dump());
   }
 
@@ -233,10 +228,7 @@ trs::DisplayEncoder display_encoder(const py::kwargs& kwargs) {
       throw py::type_error("preview() got an unexpected keyword argument '" + name + "'");
   }
   const trs::RenderOptions options = parse(py::str("image"), kwargs);  // the parser wants a scene; none is read
-  std::ostringstream err;
-  trs::DisplayEncoder display = trs::display_encoder(options, err);
-  warn(err.str());
-  return display;
+  return trs::display_encoder(options, warn);
 }
 
 /// An image as trs-render's --preview shows it: 8-bit display values.
@@ -261,15 +253,25 @@ PYBIND11_MODULE(trs_render, m) {
   m.doc() =
       "The trs-render path tracer as a function: glTF scenes lit by their emissive textures, "
       "images as numpy arrays. Keywords are trs-render's long options, with _ for -.";
+  // The lightsampler module's class, so that `except lightsampler.VulkanUnavailable` catches a
+  // render's too; held as long as the process runs.
+  static const py::handle vulkan_unavailable =
+      py::object(py::module_::import("lightsampler").attr("VulkanUnavailable")).release();
+  m.attr("VulkanUnavailable") = vulkan_unavailable;
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const trs::FileError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const lightsampler::VulkanUnavailable& e) {
-      PyErr_SetString(PyExc_RuntimeError, e.what());
+      PyErr_SetString(vulkan_unavailable.ptr(), e.what());
     }
   });
+
+  py::list strategies;
+  for (const tracer::StrategyName& strategy : tracer::kStrategyNames) strategies.append(strategy.name);
+  m.attr("STRATEGIES") = py::tuple(strategies);  // the names --strategy (strategy=) takes
+  m.attr("RELMSE_GUARD") = trs::kRelmseGuard;  // relMSE's guard, as trs-imgdiff prints it
 
   m.def("render", &render, py::arg("scene"),
         "render(scene, **options) -> (image, stats): image float32 (height, width, 3) linear radiance, "

@@ -24,10 +24,11 @@ import tempfile
 from pathlib import Path
 
 sys.dont_write_bytecode = True  # importing the scene builders leaves no __pycache__ in the tree
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import make_scenes as scenes  # noqa: E402
+sys.path[:0] = [str(Path(__file__).resolve().parent), str(Path(__file__).resolve().parent / "common")]
+from scenes_gen.gltf import Gltf  # noqa: E402
+from scenes_gen.mesh import Mesh, room, sphere  # noqa: E402
+import trs_options  # noqa: E402
 
-STRATEGIES = ["uniform", "power", "tree", "texel", "tree-texel", "trs", "ris"]
 PARTS = ["decode", "upload", "counting", "strategy"]
 
 
@@ -37,7 +38,7 @@ LARGE_SIZE, LARGE_GRID = 2048, 224  # texels on a side; quads on a side (2 x 224
 class LargeClip:
     """A LARGE_SIZE^2 clip, frame k at clip/screen.%04d.png: on a grainy near-black ground, bright discs
     circle, a bar sweeps across and a fine checker scrolls (texel-scale detail). Stands in for a
-    make_scenes Texture (name, frames, frames_pattern, write)."""
+    scenes_gen Texture (name, frames, frames_pattern, write)."""
 
     name, frames_pattern = "screen.png", "clip/screen.%04d.png"
 
@@ -72,15 +73,15 @@ class LargeClip:
 def write_large_clip(folder, count):
     """A room lit only by a curved screen of 2 x LARGE_GRID^2 triangles playing a LargeClip of
     `count` frames; returns the glTF's path."""
-    gltf = scenes.Gltf("large-clip")
-    gltf.mesh("room", scenes.room(-6.0, 6.0, 5.0, -4.0, 8.0), gltf.material("plaster", (0.6,) * 3))
-    gltf.mesh("ball", scenes.sphere((0.0, 0.8, 2.0), 0.8), gltf.material("white plastic", (0.8,) * 3, 0.0, 0.3))
+    gltf = Gltf("large-clip")
+    gltf.mesh("room", room(-6.0, 6.0, 5.0, -4.0, 8.0), gltf.material("plaster", (0.6,) * 3))
+    gltf.mesh("ball", sphere((0.0, 0.8, 2.0), 0.8), gltf.material("white plastic", (0.8,) * 3, 0.0, 0.3))
 
     def point(s, t):  # a quarter cylinder of radius 5 m behind the stage, 4 m high, facing +z
         angle = (s - 0.5) * math.pi / 2
         return (5.0 * math.sin(angle), 4.5 - 4.0 * t, 1.1 - 5.0 * math.cos(angle))
 
-    screen = scenes.Mesh()
+    screen = Mesh()
     screen.add_grid(point, lambda s, t: (-math.sin((s - 0.5) * math.pi / 2), 0.0, math.cos((s - 0.5) * math.pi / 2)),
                     LARGE_GRID, LARGE_GRID)
     gltf.mesh("LED volume", screen, gltf.emissive_material("LED volume", LargeClip(count), 6.0))
@@ -90,16 +91,15 @@ def write_large_clip(folder, count):
 
 
 def measure(args, backend, strategy, work):
-    first, last = (int(x) for x in args.frames.split(":"))
-    run = [args.render, args.scene, "--frames", args.frames, "--strategy", strategy, "--backend", backend,
-           "--spp", "1", "--width", str(args.width), "--height", str(args.height), "--quiet",
+    run = [args.render, args.scene, "--frames", trs_options.frames_argument(args.frames), "--strategy", strategy,
+           "--backend", backend, "--spp", "1", "--width", str(args.width), "--height", str(args.height), "--quiet",
            "--out", str(work / "o.%04d.exr"), "--stats", str(work / "s.%04d.json")]
     if args.refine is not None:
         run += ["--refine", args.refine]
     done = subprocess.run(run, capture_output=True, text=True)
     if done.returncode != 0:
         sys.exit(f"animation_cost: {' '.join(run)} failed:\n{done.stderr}")
-    stats = [json.loads((work / f"s.{f:04d}.json").read_text()) for f in range(first + 1, last + 1)]
+    stats = [json.loads((work / f"s.{f:04d}.json").read_text()) for f in args.frames[1:]]
     row = {"backend": backend, "strategy": strategy, "refine": args.refine or "default", "frames": len(stats)}
     for part in PARTS:
         row[part + "_ms"] = statistics.mean(s["emission_update_ms"][part] for s in stats)
@@ -116,9 +116,10 @@ def main():
     scene.add_argument("--large-clip", action="store_true",
                        help=f"a generated curved screen of {2 * LARGE_GRID ** 2:,} triangles playing a "
                             f"{LARGE_SIZE} x {LARGE_SIZE} clip")
-    parser.add_argument("--frames", default="0:12", help="A:B, the first only builds (default 0:12)")
+    parser.add_argument("--frames", type=trs_options.frame_range, default="0:12",
+                        help="A:B, the first only builds (default 0:12)")
     parser.add_argument("--backends", nargs="+", default=["cpu"], choices=["cpu", "vulkan"])
-    parser.add_argument("--strategies", nargs="+", default=STRATEGIES, choices=STRATEGIES)
+    parser.add_argument("--strategies", nargs="+", default=trs_options.STRATEGIES, choices=trs_options.STRATEGIES)
     parser.add_argument("--width", type=int, default=160)
     parser.add_argument("--height", type=int, default=90)
     parser.add_argument("--refine", help="trs-render's --refine (the light sampler's subdivision; 0: off)")
@@ -127,7 +128,7 @@ def main():
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         if args.large_clip:
-            args.scene = str(write_large_clip(Path(tmp) / "large-clip", int(args.frames.split(":")[1]) + 1))
+            args.scene = str(write_large_clip(Path(tmp) / "large-clip", args.frames.stop))
         for backend in args.backends:
             for strategy in args.strategies:
                 work = Path(tmp) / f"{backend}-{strategy}"

@@ -5,7 +5,8 @@
 #                               whole test suite (ctest); then builds the library alone, without its
 #                               Vulkan backend, and runs that configuration's tests. Minutes.
 #   bash tools/check.sh --full  then also installs the Python modules with pip into a fresh venv and
-#                               runs an example from it; builds everything without OpenImageIO, runs
+#                               runs an example from it; compares the courtyard's punctual lights
+#                               with Blender's Cycles; builds everything without OpenImageIO, runs
 #                               its tests and the GPU report's quick run from its bundle; builds
 #                               everything with the sanitizers and runs the tests under them; and
 #                               fuzzes the parsers of user files for a fixed time each. CI runs this.
@@ -36,6 +37,11 @@ rm -rf build-pip/venv
 /usr/bin/python3 -m venv --system-site-packages build-pip/venv  # Debian's, with its numpy
 build-pip/venv/bin/pip install --no-build-isolation --no-index --quiet .
 (cd build-pip && venv/bin/python ../examples/python/variance.py --quick)
+# Punctual lights against Blender's Cycles as its glTF importer reads the file: the courtyard's
+# mean over its lit pixels, diffuse materials in both (docs/renderer.md, "Punctual lights").
+bash tools/setup-debian.sh --blender
+/usr/bin/python3 tools/cycles_compare.py scenes/courtyard/courtyard.gltf --render build/bin/trs-render \
+  --out build/cycles-compare --diffuse --tolerance 0.05
 # The build without OpenImageIO, which the GPU report carries to machines without the project's
 # packages: its tests, then the report's quick run from its bundle (tools/gpu-report.sh --bundle).
 cmake -S . -B build-noiio -G Ninja -DCMAKE_BUILD_TYPE=Release -DTRS_OPENIMAGEIO=OFF

@@ -11,7 +11,7 @@ exclude=(
   # The same sampler made and dropped 200 times; each one's pipelines are compiled by lavapipe,
   # whose allocations all go through AddressSanitizer: over ten minutes on two cores, where every
   # other Vulkan test makes and drops samplers too.
-  VulkanTest.TwoHundredSamplersComeAndGo
+  VulkanTest.SixtySamplersComeAndGo
   # Drivers of the tools (trs-study: trs-render and trs-imgdiff; tools/figures: trs-bench and
   # trs-sample; the GPU report: all of them and the Vulkan tests), minutes each; the cli, render,
   # smoke and vulkan tests run those tools and tests.

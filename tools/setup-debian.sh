@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package the project builds, tests and runs with; with --video also
-# ffmpeg, which only the animation demo (tools/demo.sh --animation) uses.
+# ffmpeg, which only the animation demo (tools/demo.sh --animation) uses; with --blender also
+# Blender, whose Cycles renders the reference that tools/cycles_compare.py checks against
+# (tools/check.sh --full).
 # Idempotent: does nothing when all of them are present. Needs root (or sudo).
 set -euo pipefail
 
@@ -26,9 +28,13 @@ packages=(
   # fuzzing (libFuzzer and the sanitizer runtimes of Clang)
   clang libclang-rt-14-dev
 )
-if [ "${1:-}" = --video ]; then
-  packages+=(ffmpeg fonts-dejavu-core)
-fi
+for option in "$@"; do
+  case "$option" in
+    --video) packages+=(ffmpeg fonts-dejavu-core) ;;
+    --blender) packages+=(blender) ;;
+    *) echo "usage: tools/setup-debian.sh [--video] [--blender]" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

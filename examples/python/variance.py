@@ -23,8 +23,8 @@ lit = trs_render.emitter_mask(scene, **size) == 0  # the emitters themselves: no
 
 
 def relmse(image):
-    """(x - r)^2 / (r^2 + 0.01), averaged over the lit pixels' channels (trs-imgdiff's relMSE)."""
-    return float(((image - reference) ** 2 / (reference ** 2 + 0.01))[lit].mean())
+    """(x - r)^2 / (r^2 + guard), averaged over the lit pixels' channels (trs-imgdiff's relMSE)."""
+    return float(((image - reference) ** 2 / (reference ** 2 + trs_render.RELMSE_GUARD))[lit].mean())
 
 
 for strategy in ["uniform", "trs"]:

@@ -1,6 +1,7 @@
-"""tools/common/trs_measure.py, the Python tools' measurement, against trs-imgdiff's (C++): EXRs
-written here with numpy, measured by both, relMSE over all pixels and over the lit pixels of an
-emitter mask. Run by ctest with the paths of trs-imgdiff and of the module's directory."""
+"""tools/common/trs_measure.py, the Python tools' measurement, against trs-imgdiff's (C++): the
+relMSE guard, and EXRs written here with numpy, measured by both, relMSE over all pixels and over
+the lit pixels of an emitter mask. Run by ctest with the paths of trs-imgdiff and of the module's
+directory."""
 
 import argparse
 import json
@@ -54,6 +55,9 @@ class AgainstImgdiff(unittest.TestCase):
 
     def assert_agrees(self, ours, theirs):
         self.assertLess(abs(ours / theirs - 1.0), 1e-9, f"trs_measure {ours!r}, trs-imgdiff {theirs!r}")
+
+    def test_the_guard_is_the_one_imgdiff_prints(self):
+        self.assertEqual(trs_measure.GUARD, self.imgdiff()["relmse_guard"])
 
     def test_read_exr_gives_the_pixels_written(self):
         np.testing.assert_array_equal(trs_measure.read_exr(self.dir / "image.exr"), self.image)

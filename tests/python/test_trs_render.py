@@ -1,9 +1,13 @@
 """`import trs_render`: a render from Python equals trs-render's EXR for the same settings, bit for
 bit, whether in one call or frame by frame; options are trs-render's, checked by its parser."""
 
+import importlib.util
 import json
 import subprocess
+import sys
+from pathlib import Path
 
+import lightsampler
 import numpy as np
 import OpenImageIO as oiio
 import pytest
@@ -114,6 +118,14 @@ def test_preview_takes_the_display_transform_of_the_command_line(tmp_path, scene
         trs_render.preview(image, spp=3)
 
 
+def test_a_warning_of_the_run_is_a_runtime_warning_in_its_own_words(tmp_path, scenes):
+    config = tmp_path / "acescg.ocio"  # no linear Rec. 709 space: the renders' space is a guess
+    config.write_text(RAW_CONFIG.replace("lin_rec709", "acescg"))
+    with pytest.warns(RuntimeWarning, match="acescg.ocio: no colour space for linear Rec. 709") as warned:
+        trs_render.render(scene(scenes), preview=tmp_path / "a.png", ocio_config=config, **TINY)
+    assert not any(str(w.message).startswith("trs-render") for w in warned)
+
+
 def test_a_sequence_gives_one_image_per_frame(scenes):
     frames = trs_render.render(scenes / "video-wall" / "video-wall.gltf", frames="0:1", **TINY)
     assert len(frames) == 2
@@ -137,6 +149,24 @@ def test_emitter_mask_marks_the_emitters_seen(scenes):
 def test_bad_options_are_refused_with_the_command_line_message(scenes, options, error, message):
     with pytest.raises(error, match=message):
         trs_render.render(scene(scenes), **options)
+
+
+def test_a_missing_vulkan_device_raises_lightsamplers_vulkan_unavailable(scenes):
+    assert trs_render.VulkanUnavailable is lightsampler.VulkanUnavailable
+    with pytest.raises(lightsampler.VulkanUnavailable):
+        trs_render.render(scene(scenes), backend="vulkan", device="no such device", **TINY)
+
+
+def test_the_python_tools_study_every_strategy_but_auto():
+    """tools/common/trs_options.py, which the Python tools run trs-render with, against the
+    renderer's own names."""
+    path = Path(__file__).resolve().parents[2] / "tools" / "common" / "trs_options.py"
+    spec = importlib.util.spec_from_file_location("trs_options", path)
+    trs_options = importlib.util.module_from_spec(spec)
+    sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+    spec.loader.exec_module(trs_options)
+    assert sorted(trs_options.STRATEGIES) == sorted(set(trs_render.STRATEGIES) - {"auto"})
+    assert "auto" in trs_render.STRATEGIES
 
 
 def test_bad_scene_is_refused_with_its_name(tmp_path):

@@ -47,7 +47,9 @@ TEST_F(ImgdiffCliTest, FiguresPerChannelAndOverallFollowTheirDefinitions) {
   const RunResult r = run({test.string(), reference.string(), "--json", json.string()});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("relative MSE"), std::string::npos);
+  EXPECT_NE(r.out.find("relMSE guard 0.01 "), std::string::npos) << r.out;
   const nlohmann::json d = nlohmann::json::parse(trs_test::read_file(json));
+  EXPECT_EQ(d["relmse_guard"].get<double>(), 0.01);
   EXPECT_NEAR(d["R"]["relmse"].get<double>(), relmse({0, 3, 6, 9}), 1e-6);
   EXPECT_NEAR(d["B"]["relmse"].get<double>(), relmse({2, 5, 8, 11}), 1e-6);
   EXPECT_NEAR(d["overall"]["relmse"].get<double>(), relmse({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}), 1e-6);

@@ -423,6 +423,56 @@ TEST_F(RenderCliTest, SceneWithoutEmitters) {
   }
 }
 
+/// The quad's document with a node placing a punctual light `light` (its JSON object) at
+/// (0.5, 0.5, 1), above the quad's centre; `required`: the document's extensionsRequired.
+std::string lit_quad_gltf(const std::string& material, const std::string& light, const std::string& required) {
+  std::string gltf = quad_gltf(material, R"("extensionsUsed": ["KHR_lights_punctual"],
+  "extensionsRequired": )" + required + R"(,
+  "extensions": {"KHR_lights_punctual": {"lights": [)" + light + "]}},");
+  const std::string nodes = R"("scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}],)";
+  const std::string lit = R"("scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0}, {"translation": [0.5, 0.5, 1], "extensions": {"KHR_lights_punctual": {"light": 0}}}],)";
+  return gltf.replace(gltf.find(nodes), nodes.size(), lit);
+}
+
+// A grey quad lit only by a point light: every strategy renders it, the stats count the light,
+// and --no-punctual leaves a scene without lights, which is refused.
+TEST_F(RenderCliTest, PunctualLightsRenderAndNoPunctualLeavesThemOut) {
+  write_file(file("quad.bin"), trs_test::quad_gltf_buffer());
+  const fs::path scene = write_text(
+      "lamp.gltf", lit_quad_gltf(R"({"name": "grey", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1]}})",
+                                 R"({"type": "point", "intensity": 683})", R"(["KHR_lights_punctual"])"));
+  for (const std::string& strategy : kStrategies) {
+    SCOPED_TRACE(strategy);
+    const RunResult result = run(tiny(scene, {"--strategy", strategy, "--out", file("lamp.exr").string(), "--stats",
+                                              file("lamp.json").string()}));
+    ASSERT_EQ(result.status, 0) << result.err;
+    const std::optional<trs::Image> image = read_render(file("lamp.exr"), 16, 9);
+    ASSERT_TRUE(image);
+    EXPECT_TRUE(any_positive(*image));
+    EXPECT_EQ(read_json(file("lamp.json"))["punctual_lights"], 1);
+    EXPECT_EQ(read_json(file("lamp.json"))["settings"]["punctual"], true);
+  }
+  std::vector<std::string> args = all_outputs();
+  args.push_back("--no-punctual");
+  expect_failure_naming(tiny(scene, args), scene);
+}
+
+// A file that requires an extension the renderer lacks is refused, naming the file and the
+// extension, status 1.
+TEST_F(RenderCliTest, ARequiredExtensionTheRendererLacksIsRefused) {
+  write_file(file("quad.bin"), trs_test::quad_gltf_buffer());
+  const fs::path scene =
+      write_text("glass.gltf", lit_quad_gltf(R"({"name": "glow", "emissiveFactor": [1, 1, 1]})",
+                                             R"({"type": "directional", "intensity": 683})",
+                                             R"(["KHR_lights_punctual", "KHR_materials_volume"])"));
+  expect_failure_naming(tiny(scene, all_outputs()), scene);
+  const RunResult result = run(tiny(scene, {"--out", file("glass.exr").string()}));
+  EXPECT_NE(result.err.find("requires the extension KHR_materials_volume, which is not implemented"), std::string::npos)
+      << result.err;
+}
+
 // 5. Bad command lines: status 2, nothing written.
 TEST_F(RenderCliTest, LightsAutoIsAQuarterOfTheQueriesAndTheDefault) {
   // 20 x 10 pixels, max depth 3: 600 next-event queries per frame, 150 lights.
@@ -670,6 +720,28 @@ TEST_F(RenderCliTest, AFrameRendersTheSameInAnyRange) {
   }
 }
 
+// The video wall's sign goes dark at frame 12 and lights again at frame 24 (its strength keyed 40,
+// 0, 40): frame 24 after the dark frames renders as frame 24 alone, with every strategy and the
+// tree's image-mean power, which follows the strength.
+TEST_F(RenderCliTest, AStrengthThatGoesToZeroAndBackRendersAFrameTheSameInAnyRange) {
+  std::vector<std::vector<std::string>> configs;
+  for (const std::string& strategy : kStrategies) configs.push_back({"--strategy", strategy});
+  for (const char* strategy : {"tree", "tree-texel"})
+    configs.push_back({"--strategy", strategy, "--tree-power", "image-mean"});
+  for (const std::vector<std::string>& config : configs) {
+    SCOPED_TRACE(config[1] + (config.size() > 2 ? " " + config[3] : ""));
+    for (const char* range : {"22:24", "24:24"}) {
+      std::vector<std::string> args = config;
+      for (const std::string a : {"--backend", "cpu", "--frames", range, "--out"}) args.push_back(a);
+      args.push_back(file(range[1] == '2' ? "dark.%d.exr" : "lit.%d.exr").string());
+      ASSERT_EQ(run(tiny(kAnimated, args)).status, 0);
+    }
+    const auto after_dark = read_render(file("dark.24.exr"), 16, 9), alone = read_render(file("lit.24.exr"), 16, 9);
+    ASSERT_TRUE(after_dark && alone);
+    EXPECT_EQ(after_dark->rgb, alone->rgb);
+  }
+}
+
 TEST_F(RenderCliTest, ResumeRendersOnlyTheFramesNotAllThere) {
   ASSERT_EQ(run(tiny(kAnimated, {"--frames", "0:2", "--out", file("r.%d.exr").string(), "--stats",
                                  file("r.%d.json").string()})).status, 0);
@@ -701,6 +773,24 @@ TEST_F(RenderCliTest, PlanPrintsACommandPerChunkAndRendersNothing) {
     EXPECT_NE(lines[i].find(file("p.%04d.exr").string()), std::string::npos) << lines[i];
     EXPECT_EQ(lines[i].find("--plan"), std::string::npos) << lines[i];
   }
+}
+
+// A scene given by its bare file name, run from its own folder, finds its image sequence there
+// (the folder of "clip.gltf" is empty, and the working directory is meant), still or animated.
+TEST_F(RenderCliTest, ASceneNamedByItsBareFileNameFindsItsSequence) {
+  write_file(file("clip.0.png"), trs_test::png_file(8, 8, 3, 8, std::vector<std::uint16_t>(8 * 8 * 3, 230)));
+  write_file(file("clip.1.png"), trs_test::png_file(8, 8, 3, 8, std::vector<std::uint16_t>(8 * 8 * 3, 90)));
+  write_quad_scene("clip.gltf", R"({"name": "screen", "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0}})",
+                   R"("textures": [{"source": 0}], "images": [{"uri": "clip.0.png", "extras": {"frames": "clip.%d.png"}}],)");
+  const fs::path before = fs::current_path();
+  fs::current_path(file(""));
+  const RunResult still = run(tiny("clip.gltf", {"--out", "still.exr"}));
+  const RunResult animated = run(tiny("clip.gltf", {"--out", "clip.%d.exr", "--frames", "0:1"}));
+  fs::current_path(before);
+  EXPECT_EQ(still.status, 0) << still.err;
+  EXPECT_EQ(animated.status, 0) << animated.err;
+  EXPECT_TRUE(fs::exists(file("still.exr")));
+  EXPECT_TRUE(fs::exists(file("clip.1.exr")));
 }
 
 // Each frame of a two-image sequence is the still render of that frame's image: bit for bit,

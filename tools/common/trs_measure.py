@@ -6,7 +6,9 @@ array of shape (height, width). numpy and OpenImageIO's binding are imported on 
 that a tool can import this module for commands that read no image.
 """
 
-GUARD = 0.01  # added to reference^2: keeps dark pixels from dominating relMSE
+# Added to reference^2: keeps dark pixels from dominating relMSE. The value trs-imgdiff prints
+# and writes as relmse_guard (tools/common/relmse.h); tests/measure/test_measure.py checks it.
+GUARD = 0.01
 
 
 def read_exr(path):

@@ -1,14 +1,14 @@
 // trs-imgdiff: compares a render with a reference, allowing for Monte Carlo noise.
 //
 // Always printed: the relative MSE of the test's luminance against the reference's (per-pixel
-// squared error over reference^2 + 0.01, averaged), then RMSE, relMSE and PSNR per channel and
-// over all three. With the variance images trs-render writes (--variance) and both sample
-// counts, it also runs a noise-aware test: the image is cut into tiles, and each tile's mean
-// luminance difference is divided by its standard error (from the per-sample variances of both
-// images). Averaging a tile first tames the heavy tails of path tracing noise. The test fails
-// when any tile lies more than --sigmas standard errors away. --mask leaves out the pixels an
-// emitter mask (trs-render --emitter-mask) marks: there the noise is the pixel footprint over an
-// emitter, whatever the light strategy.
+// squared error over reference^2 + a guard, averaged; common/relmse.h) and that guard, then
+// RMSE, relMSE and PSNR per channel and over all three. With the variance images trs-render
+// writes (--variance) and both sample counts, it also runs a noise-aware test: the image is cut
+// into tiles, and each tile's mean luminance difference is divided by its standard error (from
+// the per-sample variances of both images). Averaging a tile first tames the heavy tails of path
+// tracing noise. The test fails when any tile lies more than --sigmas standard errors away.
+// --mask leaves out the pixels an emitter mask (trs-render --emitter-mask) marks: there the noise
+// is the pixel footprint over an emitter, whatever the light strategy.
 // Exit status: 0 pass, 1 fail or bad input, 2 bad command line.
 
 #include <CLI/CLI.hpp>
@@ -23,6 +23,7 @@
 #include <optional>
 #include <string>
 
+#include "common/relmse.h"
 #include "scene_io/atomic_file.h"
 #include "scene_io/color.h"
 #include "scene_io/file_error.h"
@@ -39,13 +40,6 @@ struct Options {
 };
 
 double luminance(const float* rgb) { return trs::luminance<double>(rgb[0], rgb[1], rgb[2]); }
-
-/// relMSE's per-value error: squared difference over reference^2 + 0.01 (the guard keeps dark
-/// pixels from dominating).
-double relative_error(double test, double reference) {
-  const double e = test - reference;
-  return e * e / (reference * reference + 0.01);
-}
 
 void check_same_size(const Image& a, const Image& b, const std::filesystem::path& file) {
   if (a.width != b.width || a.height != b.height)
@@ -79,7 +73,7 @@ Errors channel_errors(const Image& test, const Image& reference, const std::vect
     for (int k = c == 3 ? 0 : c; k < (c == 3 ? 3 : c + 1); ++k) {
       const double x = test.rgb[3 * i + k], r = reference.rgb[3 * i + k];
       squared += (x - r) * (x - r);
-      relative += relative_error(x, r);
+      relative += relative_squared_error(x, r);
       peak = std::max(peak, r);
       ++values;
     }
@@ -95,7 +89,7 @@ double luminance_relmse(const Image& test, const Image& reference, const std::ve
   std::size_t pixels = 0;
   for (std::size_t i = 0; i < counted.size(); ++i) {
     if (!counted[i]) continue;
-    sum += relative_error(luminance(&test.rgb[3 * i]), luminance(&reference.rgb[3 * i]));
+    sum += relative_squared_error(luminance(&test.rgb[3 * i]), luminance(&reference.rgb[3 * i]));
     ++pixels;
   }
   return pixels > 0 ? sum / double(pixels) : 0.0;
@@ -141,7 +135,7 @@ void write_heatmap(const std::filesystem::path& file, const Image& test, const I
       continue;
     }
     double e = 0;
-    for (int k = 0; k < 3; ++k) e += relative_error(test.rgb[3 * i + k], reference.rgb[3 * i + k]) / 3;
+    for (int k = 0; k < 3; ++k) e += relative_squared_error(test.rgb[3 * i + k], reference.rgb[3 * i + k]) / 3;
     const double t = std::clamp((std::log10(std::max(e, 1e-30)) + 4.0) / 5.0, 0.0, 1.0);
     const double at = t * double(kRamp.size() - 1);
     const auto lo = std::min(std::size_t(at), kRamp.size() - 2);
@@ -164,9 +158,13 @@ int run(const Options& o) {
   if (!o.json.empty()) AtomicFile probe(o.json);  // fail before the work, not after it
   const double relmse = luminance_relmse(test, reference, counted);
   std::printf("relative MSE %.6g\n", relmse);
+  std::printf("relMSE guard %g (squared errors over reference^2 + guard)\n", kRelmseGuard);
   const std::size_t pixels = std::size_t(std::count(counted.begin(), counted.end(), true));
   if (!o.mask.empty()) std::printf("pixels compared: %zu of %zu (the mask leaves out the rest)\n", pixels, counted.size());
-  nlohmann::json json = {{"relative_mse_luminance", relmse}, {"pixels", pixels}, {"pixels_left_out", counted.size() - pixels}};
+  nlohmann::json json = {{"relative_mse_luminance", relmse},
+                         {"relmse_guard", kRelmseGuard},
+                         {"pixels", pixels},
+                         {"pixels_left_out", counted.size() - pixels}};
   std::printf("%-8s %12s %12s %10s\n", "channel", "RMSE", "relMSE", "PSNR dB");
   const char* names[] = {"R", "G", "B", "overall"};
   for (int c = 0; c < 4; ++c) {

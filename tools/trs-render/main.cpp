@@ -60,7 +60,7 @@ int print_plan(const RenderOptions& options) {
     const std::int64_t last = std::min(frames.last, first + *options.plan_chunk - 1);
     std::cout << quoted(options.arguments[0]);
     for (const std::string& a : kept) std::cout << ' ' << quoted(a);
-    std::cout << " --frames " << first << ':' << last << '\n';
+    std::cout << " --frames " << to_string(FrameRange{first, last}) << '\n';
   }
   return 0;
 }
@@ -70,7 +70,8 @@ int run(const RenderOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   // From here on, Ctrl-C stops cleanly: temporaries are removed and what is done is saved.
   std::signal(SIGINT, on_interrupt);
-  return render(options, start, RunHooks{interrupted, std::cout, std::cerr});
+  const auto print = [](const RunNote& note) { std::cerr << note_line(note) << "\n"; };
+  return render(options, start, RunHooks{interrupted, std::cout, print});
 }
 
 }  // namespace

@@ -4,7 +4,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
-#include <ostream>
 #include <string>
 #include <variant>
 #include <vector>
@@ -21,6 +20,11 @@ struct FrameRange {
   std::int64_t count() const { return last - first + 1; }
 };
 
+/// --frames A:B: frames A to B, 0 <= A <= B, at most 12 digits each; none for any other text.
+std::optional<FrameRange> parse_frame_range(const std::string& text);
+/// The range as --frames takes it: A:B.
+std::string to_string(const FrameRange& range);
+
 struct RenderOptions {
   std::filesystem::path scene;
   /// With `frames`, every output path is a frame pattern (scene_io/frame_pattern.h) that output()
@@ -36,6 +40,9 @@ struct RenderOptions {
   /// The preview's display transform: --ocio-config, else $OCIO (none: the sRGB curve).
   DisplayTransform preview_display;
   bool progress = true;  ///< a progress bar when standard error is a terminal
+  bool punctual = true;  ///< render the scene's punctual lights (--no-punctual: its emission alone)
+  /// --diffuse-materials: every surface a Lambertian of its base colour, its emission kept.
+  bool diffuse_materials = false;
   tracer::RenderSettings render;
   /// A sequence: one image per animation frame (each with its own seeds; --spp and --time each).
   std::optional<FrameRange> frames;
@@ -56,13 +63,23 @@ std::vector<std::filesystem::path> outputs(const RenderOptions& options);
 /// Exit status of a command line that is wrong (as opposed to inputs that are).
 inline constexpr int kUsageError = 2;
 
-/// The options, or the status to exit with at once (0 after --help or --version, kUsageError after a usage
-/// error, its message printed to standard error).
+/// Why a command line renders nothing: --help or --version, printed to standard output, or a
+/// usage error.
+struct NoRender {
+  std::string error;  ///< the usage error, as trs-render prints it after "trs-render: error: "; empty for none
+  bool see_help = false;  ///< trs-render follows the error with "Run with --help for more information."
+
+  /// The status trs-render exits with: 0 after --help or --version, else kUsageError.
+  int status() const { return error.empty() ? 0 : kUsageError; }
+};
+
+/// The options of `arguments` (the program's name first), or why they render nothing; without
+/// `out_required`, --out may be left out (Python's render() returns the image).
+std::variant<RenderOptions, NoRender> parse_render_arguments(const std::vector<std::string>& arguments,
+                                                             bool out_required);
+
+/// trs-render's command line: the options, or the status to exit with at once, a usage error
+/// printed to standard error.
 std::variant<RenderOptions, int> parse_render_options(int argc, char** argv);
-/// The same from `arguments` (the program's name first), a usage error's message to `errors`;
-/// without `out_required`, --out may be left out (Python's render() returns the image).
-std::variant<RenderOptions, int> parse_render_options(int argc, char** argv, std::ostream& errors, bool out_required);
-std::variant<RenderOptions, int> parse_render_options(const std::vector<std::string>& arguments,
-                                                      std::ostream& errors, bool out_required);
 
 }  // namespace trs

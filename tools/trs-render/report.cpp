@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "common/relmse.h"
+
 namespace trs {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -129,7 +131,7 @@ double relative_variance(const tracer::RenderResult& result) {
   for (std::size_t i = 0; i < pixels; ++i) {
     const float* c = &result.rgb[3 * i];
     const double mean = trs::luminance<double>(c[0], c[1], c[2]);
-    sum += result.luminance_variance[i] / (mean * mean + 0.01);
+    sum += result.luminance_variance[i] / (mean * mean + kRelmseGuard);
   }
   return sum / double(pixels);
 }
@@ -167,9 +169,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
        {{"scene", options.scene.string()},
         {"out", options.out.empty() ? nlohmann::json(nullptr)
                                     : nlohmann::json(output(options, options.out, frame ? frame->frame : 0).string())},
-        {"frames", options.frames ? nlohmann::json(std::to_string(options.frames->first) + ":" +
-                                                   std::to_string(options.frames->last))
-                                  : nlohmann::json()},
+        {"frames", options.frames ? nlohmann::json(to_string(*options.frames)) : nlohmann::json()},
         {"fps", r.fps},
         {"width", r.width},
         {"height", r.height},
@@ -182,6 +182,8 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"candidates_from", ris ? nlohmann::json(tracer::to_string(used.candidates_from)) : nlohmann::json()},
         {"tree_importance", tree ? nlohmann::json(tracer::to_string(used.tree.importance)) : nlohmann::json()},
         {"tree_power", tree ? nlohmann::json(tracer::to_string(used.tree.power)) : nlohmann::json()},
+        {"punctual", options.punctual},
+        {"diffuse_materials", options.diffuse_materials},
         {"seed", r.seed},
         {"max_depth", r.max_depth},
         {"threads", r.threads},
@@ -204,6 +206,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
       {"setup_seconds", result.setup_seconds},
       {"setup_ms", setup_json(result)},
       {"light_sampler_parts", result.setup.sampler_parts},
+      {"punctual_lights", result.punctual_lights},
       {"render_seconds", result.render_seconds},
       {"paths", result.paths},
       {"rays", result.rays},
@@ -255,6 +258,7 @@ void print_summary(std::ostream& out, const std::filesystem::path& image, const 
   std::snprintf(line, sizeof line, "  set-up's largest part: %s %.2f s\n", largest->first, largest->second / 1000.0);
   out << line;
   if (!result.strategy_choice.reason.empty()) out << "  strategy auto: " << result.strategy_choice.reason << "\n";
+  if (result.punctual_lights > 0) out << "  punctual lights: " << result.punctual_lights << ", beside the emission\n";
   if (result.light_structure.bytes > 0) {
     std::snprintf(line, sizeof line, "  light structure: built in %.2f ms, %.3g MiB\n",
                   result.light_structure.build_ms, double(result.light_structure.bytes) / (1 << 20));

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "report.h"
@@ -30,9 +31,9 @@ void check_writable(const std::filesystem::path& file) { AtomicFile probe(file);
 
 /// The preview's display transform, when there is a preview: set up before the render, so that a
 /// config that cannot be read, or a name it lacks, fails the run before any work.
-std::optional<DisplayEncoder> preview_encoder(const RenderOptions& options, std::ostream& err) {
+std::optional<DisplayEncoder> preview_encoder(const RenderOptions& options, const NoteHandler& note) {
   if (!options.preview) return std::nullopt;
-  return display_encoder(options, err);
+  return display_encoder(options, note);
 }
 
 /// The outputs of one image: the EXR, then what else the options ask for (a preview, encoded by
@@ -47,14 +48,13 @@ void write_outputs(const RenderOptions& options, const std::optional<DisplayEnco
   if (options.emitter_mask) write_grey(output(options, *options.emitter_mask, frame), result, result.emitter_fraction);
 }
 
-void warn_about(std::ostream& err, const tracer::RenderResult& result) {
+void warn_about(const NoteHandler& note, const tracer::RenderResult& result) {
   if (result.invalid_paths > 0)
-    err << "trs-render: warning: " << result.invalid_paths << " paths gave NaN or infinite radiance and count as black\n";
-  for (const tracer::LightFrame& f : result.light_frames) {
-    if (f.exhausted == 0) continue;
-    err << "trs-render: warning: the light sampler gave up on some lights (rejection limit); the image is biased\n";
-    break;
-  }
+    note({RunNote::Kind::warning,
+          std::to_string(result.invalid_paths) + " paths gave NaN or infinite radiance and count as black"});
+  const auto exhausted = [](const tracer::LightFrame& f) { return f.exhausted > 0; };
+  if (std::any_of(result.light_frames.begin(), result.light_frames.end(), exhausted))
+    note({RunNote::Kind::warning, "the light sampler gave up on some lights (rejection limit); the image is biased"});
 }
 
 /// A deadline `seconds` after `start`.
@@ -66,9 +66,9 @@ int render_still(const RenderOptions& options, std::chrono::steady_clock::time_p
   for (const std::filesystem::path& path : outputs(options)) check_writable(path);
   std::optional<AtomicFile> stats;
   if (options.stats) stats.emplace(*options.stats);
-  const std::optional<DisplayEncoder> display = preview_encoder(options, hooks.err);
+  const std::optional<DisplayEncoder> display = preview_encoder(options, hooks.note);
 
-  const tracer::Scene scene = tracer::load_gltf_scene(options.scene);
+  const tracer::Scene scene = load_scene(options);
   tracer::Renderer renderer = make_renderer(scene, options, 0);
   if (options.time_seconds) renderer.set_deadline(after(start, *options.time_seconds));
   ProgressBar bar(options.progress, options.time_seconds);
@@ -80,7 +80,7 @@ int render_still(const RenderOptions& options, std::chrono::steady_clock::time_p
       hooks.cancel);
   bar.finish();
   if (result.frames == 0) {
-    hooks.err << "trs-render: interrupted before the first frame; nothing written\n";
+    hooks.note({RunNote::Kind::interrupted, "interrupted before the first frame; nothing written"});
     return kInterrupted;
   }
   write_outputs(options, display, 0, result);
@@ -91,10 +91,10 @@ int render_still(const RenderOptions& options, std::chrono::steady_clock::time_p
     stats->commit();
   }
   print_summary(hooks.out, options.out, result, wall);
-  warn_about(hooks.err, result);
+  warn_about(hooks.note, result);
   if (hooks.on_image) hooks.on_image(0, result, summary);
   if (result.interrupted) {
-    hooks.err << "trs-render: interrupted; saved " << result.frames << " spp\n";
+    hooks.note({RunNote::Kind::interrupted, "interrupted; saved " + std::to_string(result.frames) + " spp"});
     return kInterrupted;
   }
   return 0;
@@ -118,9 +118,9 @@ int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
   if (todo.empty()) return 0;
   for (const std::int64_t f : todo)
     for (const std::filesystem::path& path : outputs(options)) check_writable(output(options, path, f));
-  const std::optional<DisplayEncoder> display = preview_encoder(options, hooks.err);
+  const std::optional<DisplayEncoder> display = preview_encoder(options, hooks.note);
 
-  const tracer::Scene scene = tracer::load_gltf_scene(options.scene);
+  const tracer::Scene scene = load_scene(options);
   std::optional<tracer::Renderer> renderer;
   // Every frame's samples count towards the bar; with a time budget, every frame's seconds.
   const unsigned spp = options.render.spp;
@@ -130,7 +130,7 @@ int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
   const std::atomic<bool> never{false};  // the frame under way always finishes
   for (std::size_t i = 0; i < todo.size() && !hooks.cancel; ++i) {
     const auto frame_start = std::chrono::steady_clock::now();
-    SequenceFrame frame{todo[i], double(todo[i]) / options.render.fps, {}};
+    SequenceFrame frame{todo[i], tracer::animation_seconds(todo[i], options.render.fps), {}};
     if (renderer)
       frame.update = renderer->set_frame(frame.frame);
     else
@@ -153,17 +153,30 @@ int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
     }
     bar.finish();
     print_frame(hooks.out, output(options, options.out, frame.frame), result, frame, wall);
-    warn_about(hooks.err, result);
+    warn_about(hooks.note, result);
     if (hooks.on_image) hooks.on_image(frame.frame, result, summary);
   }
   if (hooks.cancel) {
-    hooks.err << "trs-render: interrupted; the frames written stay (--resume renders the rest)\n";
+    hooks.note({RunNote::Kind::interrupted, "interrupted; the frames written stay (--resume renders the rest)"});
     return kInterrupted;
   }
   return 0;
 }
 
 }  // namespace
+
+tracer::Scene load_scene(const RenderOptions& options) {
+  tracer::Scene scene = tracer::load_gltf_scene(options.scene);
+  if (!options.punctual) scene.lights.clear();
+  if (options.diffuse_materials) {
+    for (tracer::Material& m : scene.materials) {
+      m.metallic = 0.0f;
+      m.metallic_roughness_texture = tracer::kNoTexture;
+      m.specular = 0.0f;
+    }
+  }
+  return scene;
+}
 
 tracer::Renderer make_renderer(const tracer::Scene& scene, const RenderOptions& options, std::int64_t frame) {
   try {
@@ -173,10 +186,14 @@ tracer::Renderer make_renderer(const tracer::Scene& scene, const RenderOptions& 
   }
 }
 
-DisplayEncoder display_encoder(const RenderOptions& options, std::ostream& err) {
+std::string note_line(const RunNote& note) {
+  return (note.kind == RunNote::Kind::warning ? "trs-render: warning: " : "trs-render: ") + note.text;
+}
+
+DisplayEncoder display_encoder(const RenderOptions& options, const NoteHandler& note) {
   DisplayEncoder display(options.preview_display);
   if (!display.warning().empty())
-    err << "trs-render: warning: " << display.warning() << " (--ocio-colorspace names the renders' space)\n";
+    note({RunNote::Kind::warning, display.warning() + " (--ocio-colorspace names the renders' space)"});
   return display;
 }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <ostream>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -21,13 +22,31 @@ namespace trs {
 inline constexpr int kRunFailed = 1;
 inline constexpr int kInterrupted = 130;
 
+/// What a run tells besides its summaries (trs-render prints it on standard error).
+struct RunNote {
+  enum class Kind {
+    warning,      ///< about the image or the settings; the run goes on
+    interrupted,  ///< what a run that `cancel` stopped has saved
+  };
+  Kind kind;
+  std::string text;  ///< one sentence
+};
+
+/// A note as trs-render prints it, without the newline: "trs-render: warning: TEXT" or
+/// "trs-render: TEXT".
+std::string note_line(const RunNote& note);
+
+/// Takes each note as it comes.
+using NoteHandler = std::function<void(const RunNote&)>;
+
 struct RunHooks {
   /// Once true, a still drops the frame under way and keeps the frames done; a sequence
   /// finishes the frame under way and stops.
   const std::atomic<bool>& cancel;
-  /// Summaries (trs-render's standard output) and warnings (its standard error).
+  /// Summaries (trs-render's standard output).
   std::ostream& out;
-  std::ostream& err;
+  /// Warnings, and what an interrupted run saved: trs-render prints them, Python warns with them.
+  NoteHandler note;
   /// Each image once it is done and written: its animation frame (0 for a still), the result
   /// and the stats JSON that --stats writes.
   std::function<void(std::int64_t, const tracer::RenderResult&, const nlohmann::json&)> on_image = {};
@@ -35,9 +54,13 @@ struct RunHooks {
   std::function<void()> on_frame = {};
 };
 
-/// The preview's display transform that `options` ask for, a warning about it written to `err`.
-/// Throws FileError naming the config (scene_io/display.h).
-DisplayEncoder display_encoder(const RenderOptions& options, std::ostream& err);
+/// The preview's display transform that `options` ask for, a warning about it to `note`. Throws
+/// FileError naming the config (scene_io/display.h).
+DisplayEncoder display_encoder(const RenderOptions& options, const NoteHandler& note);
+
+/// The scene the options name, its punctual lights left out with --no-punctual, its materials
+/// made Lambertian with --diffuse-materials. Throws FileError naming the file.
+tracer::Scene load_scene(const RenderOptions& options);
 
 /// The renderer of `scene` with the options' settings at animation frame `frame`; a scene that
 /// cannot be rendered so (its lights emit nothing, say) is a FileError naming options.scene.
