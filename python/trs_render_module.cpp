@@ -155,8 +155,8 @@ class PyRenderer {
     renderer_.emplace(trs::make_renderer(*scene_, options_, frame));
   }
 
-  /// Renders `count` frames more (settings' spp by default) and returns the image so far.
-  py::array_t<float> render_frames(std::optional<unsigned> count) {
+  /// Renders `count` passes more (settings' spp by default) and returns the image so far.
+  py::array_t<float> render_passes(std::optional<unsigned> count) {
     InterruptCheck interrupt;
     {
       py::gil_scoped_release release;
@@ -177,7 +177,7 @@ class PyRenderer {
   py::array_t<float> image() const { return copy(last_.rgb, 3); }
   py::array_t<float> variance() const { return copy(last_.luminance_variance, 1); }
   py::array_t<float> emitter_fraction() const { return copy(last_.emitter_fraction, 1); }
-  unsigned frames() const { return last_.frames; }
+  unsigned passes() const { return last_.passes; }
   std::int64_t frame() const { return frame_; }
 
   py::dict stats() const {
@@ -215,7 +215,7 @@ py::array_t<float> emitter_mask(const py::object& scene, py::kwargs kwargs) {
            {"strategy", py::str("uniform")}, {"max_depth", py::int_(0)}})
     if (!kwargs.contains(key)) kwargs[key] = value;
   PyRenderer renderer(scene, 0, kwargs);
-  renderer.render_frames(std::nullopt);
+  renderer.render_passes(std::nullopt);
   return renderer.emitter_fraction();
 }
 
@@ -292,9 +292,9 @@ PYBIND11_MODULE(trs_render, m) {
            "Renderer(scene, frame=0, **options): trs-render's options, less those of a run (out, stats, "
            "preview, variance, emitter_mask, frames, resume, plan, chunk, time, exposure, ocio_config, "
            "ocio_colorspace, display, view).")
-      .def("render_frame", [](PyRenderer& r) { return r.render_frames(1); },
+      .def("render_frame", [](PyRenderer& r) { return r.render_passes(1); },
            "Renders one frame more; returns the mean image so far, float32 (height, width, 3).")
-      .def("render_frames", &PyRenderer::render_frames, py::arg("count") = py::none(),
+      .def("render_frames", &PyRenderer::render_passes, py::arg("count") = py::none(),
            "Renders `count` frames more (spp by default); returns the mean image so far.")
       .def("set_frame", &PyRenderer::set_frame, py::arg("frame"),
            "Moves to animation frame `frame`; the next frames start its image afresh.")
@@ -303,7 +303,7 @@ PYBIND11_MODULE(trs_render, m) {
                              "float32 (height, width): per-sample luminance variance of each pixel")
       .def_property_readonly("emitter_fraction", &PyRenderer::emitter_fraction,
                              "float32 (height, width): fraction of camera samples whose first hit is an emitter")
-      .def_property_readonly("frames", &PyRenderer::frames, "frames (samples per pixel) so far")
+      .def_property_readonly("frames", &PyRenderer::passes, "passes (samples per pixel) so far")
       .def_property_readonly("frame", &PyRenderer::frame, "the animation frame")
       .def("stats", &PyRenderer::stats, "the stats JSON of the frames so far, as a dict");
 }

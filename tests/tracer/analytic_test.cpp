@@ -29,7 +29,7 @@ void expect_every_strategy_agrees(const QuadOverPlane& bench, const glm::dvec3& 
   for (StrategyKind kind : kinds) {
     const StrategyOptions o = options(kind);
     auto s = make_light_strategy(*bench.emitters, o);
-    const Estimate e = bench.run(*s, 1, connection_candidates(o));
+    const Estimate e = bench.run(*s, 1);
     EXPECT_TRUE(trs_test::agrees(e, expected, kSigmas, kQuadratureSlack))
         << to_string(kind) << "\n" << trs_test::describe(e, expected);
   }
@@ -60,7 +60,7 @@ TEST_F(AnalyticQuad, RisConvergesWhereverItsCandidatesComeFrom) {
     StrategyOptions o = options(StrategyKind::ris);
     o.candidates_from = source;
     auto s = make_light_strategy(*bench_->emitters, o);
-    const Estimate e = bench_->run(*s, 3, connection_candidates(o));
+    const Estimate e = bench_->run(*s, 3);
     EXPECT_TRUE(trs_test::agrees(e, expected_, kSigmas, kQuadratureSlack))
         << "ris over " << to_string(source) << "\n" << trs_test::describe(e, expected_);
   }
@@ -140,7 +140,7 @@ class TrsWithoutSetSize : public LightStrategy {
   explicit TrsWithoutSetSize(const Emitters& emitters)
       : trs_(strategy(emitters, StrategyKind::trs, 1)) {}
   std::string name() const override { return "wrong"; }
-  void begin_frame(std::uint64_t frame) override { trs_->begin_frame(frame); }
+  void begin_pass(std::uint64_t seed) override { trs_->begin_pass(seed); }
   std::optional<LightSample> sample(const LightRandom& random,
                                     const ShadingPoint& at) const override {
     auto s = trs_->sample(random, at);
@@ -162,10 +162,11 @@ TEST_F(AnalyticQuad, TheCheckRejectsWrongStrategies) {
   TrsWithoutSetSize unscaled(*bench_->emitters);
   // Used as they are, and resampled: resampling does not hide a wrong source density.
   for (unsigned candidates : {1u, kDefaultCandidates}) {
-    EXPECT_FALSE(trs_test::agrees(bench_->run(mismatched, 1, candidates), expected_, kSigmas,
-                                  kQuadratureSlack)) << candidates;
-    EXPECT_FALSE(trs_test::agrees(bench_->run(unscaled, 1, candidates), expected_, kSigmas,
-                                  kQuadratureSlack)) << candidates;
+    WithCandidates mismatched_resampled(mismatched, candidates), unscaled_resampled(unscaled, candidates);
+    EXPECT_FALSE(trs_test::agrees(bench_->run(mismatched_resampled, 1), expected_, kSigmas, kQuadratureSlack))
+        << candidates;
+    EXPECT_FALSE(trs_test::agrees(bench_->run(unscaled_resampled, 1), expected_, kSigmas, kQuadratureSlack))
+        << candidates;
   }
 }
 

@@ -140,7 +140,7 @@ class ChangingEmission : public trs_test::ScratchDirTest {
     auto s = make_light_strategy(*bench_.emitters, o);
     if (!bench_.emitters->set_frame(1, 1.0).changed()) ADD_FAILURE() << "frame 1 changed nothing";
     s->emission_changed();
-    return bench_.run(*s, 2, connection_candidates(o));
+    return bench_.run(*s, 2);
   }
 
   QuadOverPlane bench_;
@@ -166,8 +166,8 @@ TEST_F(ChangingEmission, StrategiesAreThoseBuiltFreshForTheNewEmission) {
     bench_.emitters->set_frame(1, 1.0);
     updated->emission_changed();
     auto fresh = make_light_strategy(*bench_.emitters, options(kind));
-    updated->begin_frame(3);
-    fresh->begin_frame(3);
+    updated->begin_pass(3);
+    fresh->begin_pass(3);
     for (int i = 0; i < 200; ++i) {
       const ShadingPoint at{{float(i % 7) * 0.3f - 1.0f, float(i % 5) * 0.2f - 0.4f, float(i % 3) * 0.4f},
                             {0.0f, 0.0f, 1.0f}};

@@ -20,20 +20,20 @@ struct Estimate {
   glm::dvec3 standard_error{0.0};
 };
 
-/// `frames` frames of `paths` paths along `ray`, each connection resampled from `candidates`
-/// light samples. Paths of one frame share its light set, so the error comes from the spread
-/// of the frame means, which are independent.
+/// `frames` passes of `paths` paths along `ray`, each connection resampled from the strategy's
+/// candidates. Paths of one pass share its light set, so the error comes from the spread of the
+/// pass means, which are independent.
 inline Estimate estimate_radiance(const tracer::Scene& scene, const tracer::Geometry& geometry,
                                   const tracer::Emitters& emitters,
                                   tracer::LightStrategy& strategy, const tracer::Ray& ray,
                                   unsigned max_depth, unsigned frames, unsigned paths,
-                                  std::uint64_t seed, unsigned candidates = 1) {
-  const tracer::PathTracer tracer(scene, geometry, emitters, strategy, max_depth, candidates);
+                                  std::uint64_t seed) {
+  const tracer::PathTracer tracer(scene, geometry, emitters, strategy, max_depth);
   const lightsampler::PhiloxKey key = tracer::path_key(seed);
   glm::dvec3 sum(0.0), sum_squares(0.0);
   std::uint64_t rays = 0;
   for (unsigned f = 0; f < frames; ++f) {
-    strategy.begin_frame(f);
+    strategy.begin_pass(tracer::pass_seed(seed, f));
     glm::dvec3 frame(0.0);
     for (unsigned p = 0; p < paths; ++p) {
       tracer::PathRandom random(key, p, f);

@@ -64,7 +64,7 @@ TEST(Mis, LightAndBsdfWeightsSumToOne) {
   const Bsdf bsdf({glm::vec3(0.7f), 0.3f, 0.4f}, n);
   for (const StrategyOptions& o : kStrategies) {
     auto strategy = make_light_strategy(emitters, o);
-    strategy->begin_frame(0);
+    strategy->begin_pass(0);
     int checked = 0;
     for (int i = 0; i < 2000; ++i) {
       LightRandom random;

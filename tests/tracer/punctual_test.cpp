@@ -104,7 +104,7 @@ void expect_every_strategy_sums(const WithPunctual& scene, bool emitting, std::o
   for (StrategyKind kind : kEveryStrategy) {
     const StrategyOptions o = options(kind);
     auto s = make_light_strategy(*bench.emitters, o);
-    const Estimate e = bench.run(*s, 11, connection_candidates(o));
+    const Estimate e = bench.run(*s, 11);
     EXPECT_TRUE(agrees(e, expected, kSigmas, kQuadratureSlack)) << to_string(kind) << "\n" << describe(e, expected);
     if (wrong) EXPECT_FALSE(agrees(e, miss, kSigmas, kQuadratureSlack)) << to_string(kind) << " accepts a wrong falloff";
   }

@@ -87,9 +87,8 @@ struct QuadOverPlane {
     return sum;
   }
 
-  Estimate run(LightStrategy& strategy, std::uint64_t seed = 1, unsigned candidates = 1) const {
-    return estimate_radiance(scene, *geometry, *emitters, strategy, ray(), 1, kFrames,
-                                       kPaths, seed, candidates);
+  Estimate run(LightStrategy& strategy, std::uint64_t seed = 1) const {
+    return estimate_radiance(scene, *geometry, *emitters, strategy, ray(), 1, kFrames, kPaths, seed);
   }
 };
 
@@ -97,7 +96,6 @@ inline StrategyOptions options(StrategyKind kind, double lights = 2000) {
   StrategyOptions o;
   o.kind = kind;
   o.lights = lights;
-  o.seed = 7;
   return o;
 }
 
@@ -110,6 +108,26 @@ inline const std::vector<StrategyKind> kEveryStrategy = {StrategyKind::uniform, 
                                                   StrategyKind::trs,     StrategyKind::ris,
                                                   StrategyKind::tree,    StrategyKind::texel,
                                                   StrategyKind::tree_texel};
+
+/// Another strategy's draws, each connection resampled from `candidates` of them (as `ris` does),
+/// for strategies the tests make.
+class WithCandidates : public LightStrategy {
+ public:
+  WithCandidates(LightStrategy& source, unsigned candidates) : source_(source), candidates_(candidates) {}
+  std::string name() const override { return source_.name(); }
+  unsigned candidates() const override { return candidates_; }
+  void begin_pass(std::uint64_t seed) override { source_.begin_pass(seed); }
+  std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
+    return source_.sample(random, at);
+  }
+  float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
+    return source_.pdf(light, b1, b2, from);
+  }
+
+ private:
+  LightStrategy& source_;
+  unsigned candidates_;
+};
 
 /// Deliberately wrong: lights drawn by one strategy and weighed (pdf, MIS) by another's density,
 /// for showing that a check rejects a strategy whose draws and weights disagree.

@@ -57,12 +57,10 @@ struct CubeOverPlane {
     StrategyOptions options;
     options.kind = kind;
     options.lights = 2000;
-    options.seed = seed;
     options.candidates = candidates;
     auto strategy = make_light_strategy(*emitters, options);
     return trs_test::estimate_radiance(scene, *geometry, *emitters, *strategy,
-                                       {eye, glm::normalize(point - eye)}, 1, kFrames, kPaths, seed,
-                                       connection_candidates(options));
+                                       {eye, glm::normalize(point - eye)}, 1, kFrames, kPaths, seed);
   }
 };
 

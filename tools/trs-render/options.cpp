@@ -212,7 +212,6 @@ struct ImageOptions {
   /// Before BudgetOptions, which lifts the cap of --spp under a time budget.
   UsageError finish(tracer::RenderSettings& r) const {
     if (r.width == 0 || r.height == 0 || r.spp == 0) return "--width, --height and --spp must be at least 1";
-    r.strategy.seed = r.seed;
     return std::nullopt;
   }
 };

@@ -40,11 +40,11 @@ void add_pass(std::vector<lightsampler::PassTime>& sums, const lightsampler::Pas
 
 SamplerTimes sampler_times(const tracer::RenderResult& result) {
   SamplerTimes t;
-  const auto& frames = result.light_frames;
-  if (frames.empty()) return t;
+  const auto& per_pass = result.light_passes;
+  if (per_pass.empty()) return t;
   std::vector<double> ms;
   double lights = 0.0, candidates = 0.0;
-  for (const tracer::LightFrame& f : frames) {
+  for (const tracer::LightPass& f : per_pass) {
     lights += double(f.lights);
     candidates += double(f.candidates);
     ms.push_back(f.sampler_ms);
@@ -53,11 +53,11 @@ SamplerTimes sampler_times(const tracer::RenderResult& result) {
     t.exhausted += f.exhausted;
     for (const lightsampler::PassTime& p : f.passes) add_pass(t.passes, p);
   }
-  for (lightsampler::PassTime& p : t.passes) p.ms /= double(frames.size());
-  t.mean_ms /= double(frames.size());
-  t.records_ms /= double(frames.size());
+  for (lightsampler::PassTime& p : t.passes) p.ms /= double(per_pass.size());
+  t.mean_ms /= double(per_pass.size());
+  t.records_ms /= double(per_pass.size());
   t.acceptance = candidates > 0.0 ? lights / candidates : 0.0;
-  t.mean_lights = lights / double(frames.size());
+  t.mean_lights = lights / double(per_pass.size());
   std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
   t.median_ms = ms[ms.size() / 2];
   return t;
@@ -81,7 +81,7 @@ std::vector<std::pair<const char*, double>> setup_parts(const tracer::RenderResu
           {"light_sampler", t.light_sampler_ms},
           {"subdivision", t.subdivision_ms},
           {"light_structure", t.light_structure_ms},
-          {"first_frame", 1000.0 * result.first_frame_seconds}};
+          {"first_frame", 1000.0 * result.first_pass_seconds}};
 }
 
 /// What `auto` chose and why; null for a strategy named.
@@ -112,9 +112,9 @@ void ProgressBar::update(unsigned done, unsigned total) {
   const int filled = int(kWidth * fraction);
   const double remaining = budget_ ? std::max(*budget_ - elapsed, 0.0)
                                    : done > 0 ? elapsed * (total - done) / done : 0.0;
-  const std::string frames = budget_ ? std::to_string(done) : std::to_string(done) + "/" + std::to_string(total);
+  const std::string passes = budget_ ? std::to_string(done) : std::to_string(done) + "/" + std::to_string(total);
   std::fprintf(stderr, "\r[%s%s] %s spp  %.1f s, %.1f s left ", std::string(std::size_t(filled), '#').c_str(),
-               std::string(std::size_t(kWidth - filled), '.').c_str(), frames.c_str(), elapsed, remaining);
+               std::string(std::size_t(kWidth - filled), '.').c_str(), passes.c_str(), elapsed, remaining);
   std::fflush(stderr);
   drawn_ = true;
 }
@@ -126,7 +126,7 @@ void ProgressBar::finish() {
 
 double relative_variance(const tracer::RenderResult& result) {
   const std::size_t pixels = result.luminance_variance.size();
-  if (pixels == 0 || result.frames < 2) return 0.0;
+  if (pixels == 0 || result.passes < 2) return 0.0;
   double sum = 0.0;
   for (std::size_t i = 0; i < pixels; ++i) {
     const float* c = &result.rgb[3 * i];
@@ -157,7 +157,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
   const tracer::RenderSettings& r = options.render;
   const SamplerTimes sampler = sampler_times(result);
   nlohmann::json ms = nlohmann::json::array();
-  for (const tracer::LightFrame& f : result.light_frames) ms.push_back(f.sampler_ms);
+  for (const tracer::LightPass& f : result.light_passes) ms.push_back(f.sampler_ms);
   nlohmann::json passes = nlohmann::json::object();
   for (const lightsampler::PassTime& p : sampler.passes) passes[lightsampler::to_string(p.pass)] = p.ms;
   // The options that rendered: auto's choice, or the options as given.
@@ -194,7 +194,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"ocio_colorspace", display_setting(preview, &DisplayTransform::colorspace)},
         {"display", display_setting(preview, &DisplayTransform::display)},
         {"view", display_setting(preview, &DisplayTransform::view)}}},
-      {"frames", result.frames},
+      {"frames", result.passes},
       {"strategy_choice", strategy_choice_json(r.strategy, result.strategy_choice)},
       {"interrupted", result.interrupted},
       {"frame", frame ? nlohmann::json(frame->frame) : nlohmann::json()},
@@ -232,7 +232,7 @@ void print_frame(std::ostream& out, const std::filesystem::path& image, const tr
   std::snprintf(line, sizeof line,
                 "frame %lld: %s, %u spp, %.2f s; emission %.1f ms (decode %.1f, upload %.1f, counting %.1f, "
                 "strategy %.1f), light sampler %.2f ms per spp\n",
-                static_cast<long long>(frame.frame), image.string().c_str(), result.frames, wall_seconds,
+                static_cast<long long>(frame.frame), image.string().c_str(), result.passes, wall_seconds,
                 u.decode_ms + u.upload_ms + u.counting_ms + u.strategy_ms, u.decode_ms, u.upload_ms, u.counting_ms,
                 u.strategy_ms, sampler_times(result).mean_ms);
   out << line;
@@ -243,7 +243,7 @@ void print_summary(std::ostream& out, const std::filesystem::path& image, const 
   const SamplerTimes sampler = sampler_times(result);
   char line[256];
   std::snprintf(line, sizeof line, "%s: %u x %u, %u spp%s, strategy %s\n",
-                image.string().c_str(), result.width, result.height, result.frames,
+                image.string().c_str(), result.width, result.height, result.passes,
                 result.interrupted ? " (interrupted)" : "", result.strategy.c_str());
   out << line;
   std::snprintf(line, sizeof line,

@@ -52,8 +52,8 @@ void warn_about(const NoteHandler& note, const tracer::RenderResult& result) {
   if (result.invalid_paths > 0)
     note({RunNote::Kind::warning,
           std::to_string(result.invalid_paths) + " paths gave NaN or infinite radiance and count as black"});
-  const auto exhausted = [](const tracer::LightFrame& f) { return f.exhausted > 0; };
-  if (std::any_of(result.light_frames.begin(), result.light_frames.end(), exhausted))
+  const auto exhausted = [](const tracer::LightPass& f) { return f.exhausted > 0; };
+  if (std::any_of(result.light_passes.begin(), result.light_passes.end(), exhausted))
     note({RunNote::Kind::warning, "the light sampler gave up on some lights (rejection limit); the image is biased"});
 }
 
@@ -79,7 +79,7 @@ int render_still(const RenderOptions& options, std::chrono::steady_clock::time_p
       },
       hooks.cancel);
   bar.finish();
-  if (result.frames == 0) {
+  if (result.passes == 0) {
     hooks.note({RunNote::Kind::interrupted, "interrupted before the first frame; nothing written"});
     return kInterrupted;
   }
@@ -94,7 +94,7 @@ int render_still(const RenderOptions& options, std::chrono::steady_clock::time_p
   warn_about(hooks.note, result);
   if (hooks.on_image) hooks.on_image(0, result, summary);
   if (result.interrupted) {
-    hooks.note({RunNote::Kind::interrupted, "interrupted; saved " + std::to_string(result.frames) + " spp"});
+    hooks.note({RunNote::Kind::interrupted, "interrupted; saved " + std::to_string(result.passes) + " spp"});
     return kInterrupted;
   }
   return 0;

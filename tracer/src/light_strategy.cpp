@@ -2,35 +2,12 @@
 
 #include <stdexcept>
 
+#include "resampling.h"
 #include "strategies/strategies.h"
 
 namespace tracer {
 
 namespace {
-
-/// `ris`: the points of another strategy, resampled per shading point by the path tracer
-/// (connection_candidates); as a strategy it is its source under another name.
-class Resampled : public LightStrategy {
- public:
-  explicit Resampled(std::unique_ptr<LightStrategy> source) : source_(std::move(source)) {}
-  std::string name() const override { return to_string(StrategyKind::ris); }
-  void begin_frame(std::uint64_t frame) override { source_->begin_frame(frame); }
-  void emission_changed() override { source_->emission_changed(); }
-  std::optional<LightSample> sample(const LightRandom& random,
-                                    const ShadingPoint& at) const override {
-    return source_->sample(random, at);
-  }
-  void prefetch(const LightRandom& random) const override { source_->prefetch(random); }
-  float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
-    return source_->pdf(light, b1, b2, from);
-  }
-  LightFrame last_frame() const override { return source_->last_frame(); }
-  std::string device() const override { return source_->device(); }
-  StrategySetup setup() const override { return source_->setup(); }
-
- private:
-  std::unique_ptr<LightStrategy> source_;
-};
 
 std::unique_ptr<LightStrategy> make_source(const Emitters& emitters, StrategyKind kind,
                                            const StrategyOptions& options) {
@@ -70,7 +47,7 @@ std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,
   if (!resamplable(options.candidates_from))
     throw std::invalid_argument(std::string("ris cannot draw its candidates from ") +
                                 to_string(options.candidates_from));
-  return std::make_unique<Resampled>(make_lights(emitters, options.candidates_from, options));
+  return make_resampled(make_lights(emitters, options.candidates_from, options), options.candidates);
 }
 
 LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "luminance.h"
+#include "resampling.h"
 #include "surface.h"
 
 namespace tracer {
@@ -80,15 +81,8 @@ struct PathTracer::Vertex {
 };
 
 PathTracer::PathTracer(const Scene& scene, const Geometry& geometry, const Emitters& emitters,
-                       const LightStrategy& strategy, unsigned max_depth, unsigned candidates)
-    : scene_(scene),
-      geometry_(geometry),
-      emitters_(emitters),
-      strategy_(strategy),
-      max_depth_(max_depth),
-      candidates_(candidates) {
-  if (candidates_ == 0) throw std::invalid_argument("next-event estimation needs a candidate");
-}
+                       const LightStrategy& strategy, unsigned max_depth)
+    : scene_(scene), geometry_(geometry), emitters_(emitters), strategy_(strategy), max_depth_(max_depth) {}
 
 PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const {
   PathEstimate out;
@@ -172,61 +166,29 @@ std::optional<PathTracer::Connection> PathTracer::connect(const Vertex& vertex, 
   return Connection{s, wi, distance, cos_light, f * le / pdf};
 }
 
-/// Next-event estimation, weighed against BSDF sampling. With one candidate, one point from the
-/// strategy. With M, resampled importance sampling (Talbot et al. 2005): M points from the
-/// strategy, each weighed by the luminance of what it would bring unshadowed (target over
-/// source density), one kept in proportion to its weight and traced; its estimate times the
-/// weights' mean over its own weight is unbiased, the set of candidates drawn afresh per query.
+/// Next-event estimation, weighed against BSDF sampling: a light sample of the strategy, or for
+/// `ris` one resampled from its candidates (resampling.h).
 ///
 /// MIS weighs the kept point with the strategy's own density (mis_pdf), the density the BSDF
 /// side weighs a hit with (emitted()), so that the two weights sum to one for every path. The
 /// resampled density itself has no closed form; it only sharpens the light side's estimate.
 glm::vec3 PathTracer::light_sample(const Vertex& vertex, const Bsdf& bsdf, PathRandom& random,
                                    std::uint64_t& rays) const {
-  std::optional<Connection> kept;
-  float kept_weight = 0.0f, weight_sum = 0.0f;
-  const ShadingPoint at = vertex.shading_point();
-  // In batches: a batch's candidates are fetched from memory together, then weighed.
-  constexpr unsigned kBatch = 16;
-  std::array<LightRandom, kBatch> words;
-  for (unsigned first = 0; first < candidates_; first += kBatch) {
-    const unsigned batch = std::min(kBatch, candidates_ - first);
-    for (unsigned i = 0; i < batch; ++i) {
-      const auto first = random.words(), second = random.words();
-      std::copy(first.begin(), first.end(), words[i].begin());
-      std::copy(second.begin(), second.end(), words[i].begin() + 4);
-      strategy_.prefetch(words[i]);
-    }
-    for (unsigned i = 0; i < batch; ++i) {
-      const std::optional<LightSample> s = strategy_.sample(words[i], at);
-      if (!s) continue;
-      std::optional<Connection> c = connect(vertex, bsdf, *s);
-      if (!c) continue;
-      const float weight = luminance(c->unshadowed);
-      if (!(weight > 0.0f)) continue;
-      weight_sum += weight;
-      // A one-slot reservoir: each candidate replaces the kept one with probability weight / sum
-      // (the first always: it needs no coin).
-      if (!kept || lightsampler::uniform_float(random.words()[0]) * weight_sum < weight) {
-        kept = std::move(c);
-        kept_weight = weight;
-      }
-    }
-  }
-  if (!kept) return glm::vec3(0.0f);
+  const std::optional<Resampled<Connection>> chosen = resample<Connection>(
+      strategy_, random, vertex.shading_point(), [&](const LightSample& s) { return connect(vertex, bsdf, s); });
+  if (!chosen) return glm::vec3(0.0f);
+  const Connection& kept = chosen->kept;
   const glm::vec3& ng = vertex.point.geometric_normal;
   ++rays;
-  const LightSample& light = kept->light;
+  const LightSample& light = kept.light;
   if (light.delta ? blocked_towards(geometry_, vertex.point.position, ng, light)
                   : blocked(geometry_, vertex.point.position, ng, light.position, light.normal))
     return glm::vec3(0.0f);
   // No BSDF sample finds a delta light: its sample takes the whole weight.
   const float mis = light.delta ? 1.0f
-                                : power_heuristic(solid_angle_density(light.mis_pdf, kept->distance, kept->cos_light),
-                                                  bsdf.pdf(vertex.wo, kept->wi));
-  // One candidate: weight_sum / kept_weight is one, the plain estimate.
-  const float resampling = candidates_ == 1 ? 1.0f : weight_sum / (float(candidates_) * kept_weight);
-  return kept->unshadowed * (mis * resampling);
+                                : power_heuristic(solid_angle_density(light.mis_pdf, kept.distance, kept.cos_light),
+                                                  bsdf.pdf(vertex.wo, kept.wi));
+  return kept.unshadowed * (mis * chosen->scale);
 }
 
 }  // namespace tracer

@@ -38,7 +38,7 @@ Camera scene_camera(const Scene& scene) {
 }
 
 
-/// Sums over frames per pixel, in double: thousands of frames of float noise.
+/// Sums over passes per pixel, in double: thousands of passes of float noise.
 struct Accumulator {
   std::vector<double> rgb;
   std::vector<double> luminance_squared;
@@ -47,27 +47,27 @@ struct Accumulator {
   explicit Accumulator(std::size_t pixels)
       : rgb(3 * pixels, 0.0), luminance_squared(pixels, 0.0), emitter_hits(pixels, 0) {}
 
-  void add(const std::vector<PathEstimate>& frame) {
-    for (std::size_t i = 0; i < frame.size(); ++i) {
-      for (int c = 0; c < 3; ++c) rgb[3 * i + c] += frame[i].radiance[c];
-      const double y = luminance(frame[i].radiance);
+  void add(const std::vector<PathEstimate>& pass) {
+    for (std::size_t i = 0; i < pass.size(); ++i) {
+      for (int c = 0; c < 3; ++c) rgb[3 * i + c] += pass[i].radiance[c];
+      const double y = luminance(pass[i].radiance);
       luminance_squared[i] += y * y;
-      emitter_hits[i] += frame[i].sees_emitter ? 1 : 0;
+      emitter_hits[i] += pass[i].sees_emitter ? 1 : 0;
     }
   }
 
-  void finish(unsigned frames, RenderResult& result) const {
+  void finish(unsigned passes, RenderResult& result) const {
     const std::size_t pixels = luminance_squared.size();
     result.rgb.assign(3 * pixels, 0.0f);
     result.luminance_variance.assign(pixels, 0.0f);
     result.emitter_fraction.assign(pixels, 0.0f);
-    if (frames == 0) return;
-    for (std::size_t i = 0; i < 3 * pixels; ++i) result.rgb[i] = float(rgb[i] / frames);
-    for (std::size_t i = 0; i < pixels; ++i) result.emitter_fraction[i] = float(double(emitter_hits[i]) / frames);
-    if (frames < 2) return;
+    if (passes == 0) return;
+    for (std::size_t i = 0; i < 3 * pixels; ++i) result.rgb[i] = float(rgb[i] / passes);
+    for (std::size_t i = 0; i < pixels; ++i) result.emitter_fraction[i] = float(double(emitter_hits[i]) / passes);
+    if (passes < 2) return;
     for (std::size_t i = 0; i < pixels; ++i) {
-      const double mean = trs::luminance(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]) / frames;
-      const double variance = (luminance_squared[i] / frames - mean * mean) * frames / (frames - 1);
+      const double mean = trs::luminance(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]) / passes;
+      const double variance = (luminance_squared[i] / passes - mean * mean) * passes / (passes - 1);
       result.luminance_variance[i] = float(std::max(variance, 0.0));
     }
   }
@@ -78,7 +78,7 @@ lightsampler::SamplerOptions sampler_options(const RenderSettings& settings) {
   options.cpu.threads = settings.threads;
   // The subdivision speeds up drawing lights; the other strategies only read integrals and texels.
   if (!draws_point_lights(settings.strategy)) options.refinement = {};
-  // The cost model splits for the lights a frame draws.
+  // The cost model splits for the lights a pass draws.
   if (options.refinement.cost_model) options.refinement.frame_samples = settings.strategy.lights;
   return options;
 }
@@ -122,12 +122,12 @@ struct Renderer::State {
   std::unique_ptr<LightStrategy> strategy;
   Clock::time_point strategy_built = Clock::now();
   PinholeCamera camera;
-  double first_frame_seconds = 0.0;  ///< of the frames of this animation frame
-  /// The frames rendered so far of this animation frame; render() starts it again.
+  double first_pass_seconds = 0.0;  ///< of the passes of this animation frame
+  /// The passes rendered so far of this animation frame; render() starts it again.
   struct Sums {
     Accumulator pixels;
-    std::vector<LightFrame> light_frames;
-    unsigned frames = 0;
+    std::vector<LightPass> light_passes;
+    unsigned passes = 0;
     double seconds = 0.0;
     std::uint64_t rays = 0;
     std::uint64_t invalid_paths = 0;
@@ -190,17 +190,16 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   if (settings.threads > 0)
     limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
   const std::size_t pixels = std::size_t(settings.width) * settings.height;
-  const PathTracer tracer(s.scene, s.geometry, s.emitters, *s.strategy, settings.max_depth,
-                          connection_candidates(s.choice.options));
+  const PathTracer tracer(s.scene, s.geometry, s.emitters, *s.strategy, settings.max_depth);
   const std::uint64_t frame_seed = settings.seed ^ lightsampler::mix64(std::uint64_t(s.frame));
   const lightsampler::PhiloxKey key = path_key(frame_seed);
   if (!s.sums) s.sums.emplace(State::Sums{Accumulator(pixels), {}, 0, 0.0, 0, 0});
   State::Sums& sums = *s.sums;
 
-  std::vector<PathEstimate> frame(pixels);
+  std::vector<PathEstimate> pass(pixels);
   tbb::combinable<std::uint64_t> rays, invalid;
   const auto start = Clock::now();
-  const unsigned first = sums.frames;
+  const unsigned first = sums.passes;
   const unsigned end = first + std::min(count, std::numeric_limits<unsigned>::max() - first);
   bool cancelled = false;
   for (unsigned f = first; f < end; ++f) {
@@ -209,8 +208,8 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
       break;
     }
     // The light sets of animation frames apart as their paths are: frame 0's are a still's.
-    const auto frame_start = Clock::now();
-    s.strategy->begin_frame(std::uint64_t(s.frame) << 32 | f);
+    const auto pass_start = Clock::now();
+    s.strategy->begin_pass(pass_seed(settings.seed, std::uint64_t(s.frame) << 32 | f));
     tbb::parallel_for(
         tbb::blocked_range2d<unsigned>(0, settings.height, 8, 0, settings.width, 8),
         [&](const tbb::blocked_range2d<unsigned>& tile) {
@@ -228,19 +227,19 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
                 ++invalid.local();
                 e.radiance = glm::vec3(0.0f);
               }
-              frame[pixel] = e;
+              pass[pixel] = e;
             }
           }
         });
-    if (cancel) {  // a partial frame would bias the average
+    if (cancel) {  // a partial pass would bias the average
       cancelled = true;
       break;
     }
     s.geometry.throw_if_failed();
-    sums.pixels.add(frame);
-    sums.light_frames.push_back(s.strategy->last_frame());
-    sums.frames = f + 1;
-    if (f == 0) s.first_frame_seconds = seconds_since(frame_start);
+    sums.pixels.add(pass);
+    sums.light_passes.push_back(s.strategy->last_pass());
+    sums.passes = f + 1;
+    if (f == 0) s.first_pass_seconds = seconds_since(pass_start);
     if (progress) progress(f + 1 - first, end - first);
     if (settings.deadline && Clock::now() >= *settings.deadline) break;
   }
@@ -260,20 +259,20 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   result.setup = {1000.0 * (s.scene.load_seconds - s.scene.texture_decode_seconds), 1000.0 * s.scene.texture_decode_seconds,
                   ms(s.start, s.geometry_built), lights.emission_ms, lights.sampler_ms, lights.subdivision_ms,
                   ms(s.emitters_built, s.strategy_built) - rebuilt_ms, lights.sampler_parts};
-  result.first_frame_seconds = s.first_frame_seconds;
+  result.first_pass_seconds = s.first_pass_seconds;
   result.strategy = s.strategy->name();
   result.strategy_choice = s.choice;
   result.punctual_lights = s.emitters.punctual().count();
   result.light_device = s.strategy->device();
   result.light_structure = s.strategy->setup();
-  result.frames = sums.frames;
-  result.light_frames = sums.light_frames;
+  result.passes = sums.passes;
+  result.light_passes = sums.light_passes;
   result.render_seconds = sums.seconds;
   result.interrupted = cancelled;
-  result.paths = std::uint64_t(result.frames) * pixels;
+  result.paths = std::uint64_t(result.passes) * pixels;
   result.rays = sums.rays;
   result.invalid_paths = sums.invalid_paths;
-  sums.pixels.finish(result.frames, result);
+  sums.pixels.finish(result.passes, result);
   return result;
 }
 

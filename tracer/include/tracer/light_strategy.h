@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <lightsampler/random.h>
 #include <lightsampler/sampler.h>
 
 #include "tracer/emitters.h"
@@ -71,7 +72,8 @@ struct ShadingPoint {
   glm::vec3 normal;  ///< unit shading normal
 };
 
-struct LightFrame {
+/// What a strategy's light sampler did for one pass of paths (one path per pixel).
+struct LightPass {
   double sampler_ms = 0.0;     ///< light-sampler time, milliseconds
   std::uint64_t lights = 0;    ///< point lights drawn
   std::uint64_t candidates = 0;  ///< points the rejection loops tried
@@ -80,25 +82,31 @@ struct LightFrame {
   double records_ms = 0.0;     ///< writing the lights' records, milliseconds
 };
 
-/// What a strategy built before the first frame, for reports: zeros for strategies without a
+/// What a strategy built before the first pass, for reports: zeros for strategies without a
 /// structure of their own.
 struct StrategySetup {
   double build_ms = 0;     ///< time to build it, milliseconds
   std::size_t bytes = 0;   ///< memory it holds
 };
 
+/// The seed of pass `pass`'s lights in a render of seed `seed`: `trs` draws its point lights with
+/// it. The renderer numbers a pass by its animation frame (high 32 bits) and its index within it.
+inline std::uint64_t pass_seed(std::uint64_t seed, std::uint64_t pass) {
+  return lightsampler::mix64(seed ^ lightsampler::mix64(pass));
+}
+
 class LightStrategy {
  public:
   virtual ~LightStrategy() = default;
 
   virtual std::string name() const = 0;
-  /// Called before each frame's paths; `frame` numbers frames from 0.
-  virtual void begin_frame(std::uint64_t frame) { (void)frame; }
+  /// Called before each pass of paths with the seed of its lights (pass_seed()).
+  virtual void begin_pass(std::uint64_t seed) { (void)seed; }
   /// The emitters' emission changed (Emitters::set_frame): whatever the strategy built from it
   /// is built again, or refitted.
   virtual void emission_changed() {}
   /// A point on the lights, seen from `at`; none when the lights have nothing to offer this
-  /// frame.
+  /// pass.
   virtual std::optional<LightSample> sample(const LightRandom& random,
                                             const ShadingPoint& at) const = 0;
   /// Starts bringing what sample() will read for these words into the cache, so that a shading
@@ -108,8 +116,12 @@ class LightStrategy {
   /// on the light, seen from `from`, weighs against.
   virtual float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const = 0;
 
-  /// What the light sampler did in the last frame (zeros for strategies without one).
-  virtual LightFrame last_frame() const { return {}; }
+  /// Light samples each next-event connection is resampled from (PathTracer::light_sample):
+  /// `ris`'s candidates, one for the others.
+  virtual unsigned candidates() const { return 1; }
+
+  /// What the light sampler did in the last pass (zeros for strategies without one).
+  virtual LightPass last_pass() const { return {}; }
   /// The sampler's backend and device, for reports; empty for strategies without one.
   virtual std::string device() const { return {}; }
   /// The structure the strategy built over the lights (the light tree's).
@@ -139,8 +151,7 @@ struct TreeOptions {
 
 struct StrategyOptions {
   StrategyKind kind = StrategyKind::automatic;  ///< ris or power, as the scene's emission calls for (docs/noise.md)
-  double lights = 1e6;          ///< trs (and ris over it): expected point lights per frame (N_target)
-  std::uint64_t seed = 0;       ///< trs: frame f draws its set with a seed from (seed, f)
+  double lights = 1e6;          ///< trs (and ris over it): expected point lights per pass (N_target)
   unsigned candidates = kDefaultCandidates;  ///< ris: points resampled per shading point
   StrategyKind candidates_from = StrategyKind::trs;  ///< ris: the strategy its candidates come from
   TreeOptions tree;  ///< tree (and ris over it)
@@ -156,19 +167,13 @@ inline bool picks_by_tree(const StrategyOptions& options) {
   return source_kind(options) == StrategyKind::tree || source_kind(options) == StrategyKind::tree_texel;
 }
 
-/// Whether the strategy draws a set of point lights every frame (`auto` only once it chose one).
+/// Whether the strategy draws a set of point lights every pass (`auto` only once it chose one).
 inline bool draws_point_lights(const StrategyOptions& options) {
   return source_kind(options) == StrategyKind::trs;
 }
 
 /// The strategies `ris` can draw its candidates from: any but itself.
 bool resamplable(StrategyKind kind);
-
-/// Light samples each next-event connection is resampled from (PathTracer): `candidates` for
-/// ris, one for the others.
-inline unsigned connection_candidates(const StrategyOptions& options) {
-  return options.kind == StrategyKind::ris ? options.candidates : 1;
-}
 
 /// `auto` takes `ris` over `trs` where the emission varies within the lights by at least this
 /// texel gain (StrategyChoice), and `power` below it (docs/noise.md, "The default").

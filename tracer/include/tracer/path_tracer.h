@@ -36,10 +36,9 @@ struct PathEstimate {
 class PathTracer {
  public:
   /// `max_depth`: most surface interactions a path scatters at; 0 shows emitters only, 1 is
-  /// direct lighting. `candidates`: light samples resampled into each connection (1: the
-  /// strategy's sample as it is; see light_sample()).
+  /// direct lighting. Each connection is resampled from strategy.candidates() light samples.
   PathTracer(const Scene& scene, const Geometry& geometry, const Emitters& emitters,
-             const LightStrategy& strategy, unsigned max_depth, unsigned candidates = 1);
+             const LightStrategy& strategy, unsigned max_depth);
 
   /// Radiance arriving along `ray` (one estimate); adds the rays it traces to `rays`.
   PathEstimate radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const;
@@ -59,7 +58,6 @@ class PathTracer {
   const Emitters& emitters_;
   const LightStrategy& strategy_;
   unsigned max_depth_;
-  unsigned candidates_;
 };
 
 }  // namespace tracer

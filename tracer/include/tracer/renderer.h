@@ -1,6 +1,7 @@
 #pragma once
-// Progressive rendering: frame after frame, one path per pixel each, averaged. With `trs` every
-// frame draws a fresh set of point lights first.
+// Progressive rendering: pass after pass, one path per pixel each, averaged. With `trs` every
+// pass draws a fresh set of point lights first. A frame is an animation frame: a still is frame
+// 0.
 
 #include <atomic>
 #include <chrono>
@@ -23,8 +24,8 @@ inline double animation_seconds(std::int64_t frame, double fps) { return double(
 struct RenderSettings {
   unsigned width = 640;
   unsigned height = 360;
-  unsigned spp = 16;        ///< frames (with a deadline: the most frames)
-  /// No frame starts at or after this instant; the first always runs.
+  unsigned spp = 16;        ///< passes (with a deadline: the most passes)
+  /// No pass starts at or after this instant; the first always runs.
   std::optional<std::chrono::steady_clock::time_point> deadline;
   unsigned max_depth = 4;   ///< see PathTracer
   /// Animation frame f renders with its own random streams, from seed ^ mix64(f): frame 0's are
@@ -38,12 +39,12 @@ struct RenderSettings {
   lightsampler::SamplerOptions sampler;
 };
 
-/// Point lights per frame for `trs` when none is given: a quarter of the frame's next-event
+/// Point lights per pass for `trs` when none is given: a quarter of the pass's next-event
 /// queries (pixels times max_depth), at least one. A connection picks one light of the set, so
 /// the per-pixel noise is the same with any set size; what the size buys is independence
 /// between pixels, whose shared error has about 1/N of one connection's variance. At a quarter
 /// of the queries, measured with trs-study (docs/noise.md), it is gone at the scale of 32 x 32
-/// pixel blocks, and a larger set only costs frame time.
+/// pixel blocks, and a larger set only costs time.
 inline constexpr double kAutoLightsPerQuery = 0.25;
 double auto_lights(unsigned width, unsigned height, unsigned max_depth);
 
@@ -63,20 +64,20 @@ struct SetupTimes {
 struct RenderResult {
   unsigned width = 0;
   unsigned height = 0;
-  unsigned frames = 0;                ///< frames averaged (samples per pixel)
+  unsigned passes = 0;                ///< passes averaged (samples per pixel)
   std::vector<float> rgb;             ///< mean radiance, width * height * 3, row 0 at the top
-  /// Per-pixel variance of one path's luminance over the frames (unbiased; zero below two
-  /// frames): the noise of one sample per pixel, comparable between strategies.
+  /// Per-pixel variance of one path's luminance over the passes (unbiased; zero below two
+  /// passes): the noise of one sample per pixel, comparable between strategies.
   std::vector<float> luminance_variance;
   /// Per pixel, the fraction of its camera samples whose first hit is an emitter: where the
   /// noise comes from the pixel footprint over an emitter, whatever the light strategy.
   std::vector<float> emitter_fraction;
-  std::vector<LightFrame> light_frames;  ///< per frame
+  std::vector<LightPass> light_passes;  ///< per pass
   StrategySetup light_structure;      ///< what the strategy built over the lights (zeros: nothing)
   double setup_seconds = 0.0;         ///< scene acceleration structure, emitters, strategy
   SetupTimes setup;                   ///< setup_seconds by part
-  double first_frame_seconds = 0.0;   ///< the first frame's wall time (its lights drawn, its paths traced)
-  double render_seconds = 0.0;        ///< the frames, light sampling included
+  double first_pass_seconds = 0.0;    ///< the first pass's wall time (its lights drawn, its paths traced)
+  double render_seconds = 0.0;        ///< the passes, light sampling included
   std::uint64_t paths = 0;
   std::uint64_t rays = 0;             ///< closest-hit and shadow rays traced
   std::uint64_t invalid_paths = 0;    ///< paths with a NaN or infinite estimate, counted as black
@@ -101,18 +102,18 @@ class Renderer {
   /// strategy updates what depends on it. The next render() or render_more() renders that frame
   /// from its first sample.
   EmissionUpdate set_frame(std::int64_t frame);
-  /// The instant at or after which the next render() starts no frame (RenderSettings::deadline).
+  /// The instant at or after which the next render() starts no pass (RenderSettings::deadline).
   void set_deadline(std::optional<std::chrono::steady_clock::time_point> deadline);
 
-  /// Renders settings.spp frames, or fewer by the deadline. `progress(done, total)` after each
-  /// frame. When `cancel` becomes true, the frame under way is dropped and the frames done so
+  /// Renders settings.spp passes, or fewer by the deadline. `progress(done, total)` after each
+  /// pass. When `cancel` becomes true, the pass under way is dropped and the passes done so
   /// far are returned.
   RenderResult render(const std::function<void(unsigned, unsigned)>& progress,
                       const std::atomic<bool>& cancel);
-  /// Renders `count` frames more (fewer by the deadline or `cancel`, as render() does) after
+  /// Renders `count` passes more (fewer by the deadline or `cancel`, as render() does) after
   /// those that render() or render_more() rendered of this animation frame, each with the random
   /// streams render() gives it: the result averages them all, and render_more(1) n times from
-  /// the start equals render() with n spp. `progress` counts this call's frames.
+  /// the start equals render() with n spp. `progress` counts this call's passes.
   RenderResult render_more(unsigned count, const std::function<void(unsigned, unsigned)>& progress,
                            const std::atomic<bool>& cancel);
 

@@ -22,8 +22,8 @@ class PunctualMixture : public LightStrategy {
   }
 
   std::string name() const override { return name_; }
-  void begin_frame(std::uint64_t frame) override {
-    if (area_) area_->begin_frame(frame);
+  void begin_pass(std::uint64_t seed) override {
+    if (area_) area_->begin_pass(seed);
   }
   void emission_changed() override {
     if (area_) area_->emission_changed();
@@ -56,7 +56,7 @@ class PunctualMixture : public LightStrategy {
     return area_ ? float(area_probability_) * area_->pdf(light, b1, b2, from) : 0.0f;
   }
 
-  LightFrame last_frame() const override { return area_ ? area_->last_frame() : LightFrame{}; }
+  LightPass last_pass() const override { return area_ ? area_->last_pass() : LightPass{}; }
   std::string device() const override { return area_ ? area_->device() : std::string(); }
   StrategySetup setup() const override { return area_ ? area_->setup() : StrategySetup{}; }
 

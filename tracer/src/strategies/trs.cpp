@@ -1,4 +1,4 @@
-// `trs`: every frame, lightsampler draws a fresh set of point lights with density proportional
+// `trs`: every pass of paths, lightsampler draws a fresh set of point lights with density proportional
 // to the emitted luminance (Triangle Rejection Sampling), and a shading point connects to one
 // of them, chosen uniformly.
 //
@@ -55,23 +55,21 @@ class TrsStrategy : public LightStrategy {
   TrsStrategy(const Emitters& emitters, const StrategyOptions& options)
       : emitters_(emitters),
         sampler_(emitters.sampler()),
-        target_(options.lights),
-        seed_(options.seed) {
+        target_(options.lights) {
     // Picking one light of the set takes 32 random bits.
     if (!(target_ >= 1.0 && target_ < 0x1p32))
-      throw std::invalid_argument("trs takes 1 to 2^32 - 1 lights per frame");
+      throw std::invalid_argument("trs takes 1 to 2^32 - 1 lights per pass");
   }
 
   std::string name() const override { return to_string(StrategyKind::trs); }
 
-  void begin_frame(std::uint64_t frame) override {
-    const std::uint64_t seed = lightsampler::mix64(seed_ ^ lightsampler::mix64(frame));
+  void begin_pass(std::uint64_t seed) override {
     lightsampler::FrameRequest request;
     request.seed = seed;
     request.target_count = target_;
     sampler_.generate(request, frame_);
     if (frame_.sample_count >= 0x1p32)
-      throw std::runtime_error("the light sampler drew 2^32 lights or more in one frame");
+      throw std::runtime_error("the light sampler drew 2^32 lights or more in one pass");
     scale_ = frame_.sample_count > 0 ? float(target_ / double(frame_.sample_count)) : 0.0f;
     write_records();
   }
@@ -94,7 +92,7 @@ class TrsStrategy : public LightStrategy {
     return density(light, b1, b2);
   }
 
-  LightFrame last_frame() const override {
+  LightPass last_pass() const override {
     return {frame_.total_ms, frame_.sample_count, frame_.candidates, frame_.exhausted, frame_.passes,
             records_ms_};
   }
@@ -137,7 +135,6 @@ class TrsStrategy : public LightStrategy {
   const Emitters& emitters_;
   lightsampler::Sampler& sampler_;
   double target_;
-  std::uint64_t seed_;
   lightsampler::Frame frame_;
   float scale_ = 0.0f;  ///< N_target / N
   std::vector<LightSample, HugePages<LightSample>> records_;  ///< one per light of the frame's set
