@@ -137,7 +137,7 @@ TEST_F(AnalyticQuad, StrategiesAgreeWithOneAnother) {
 // Deliberately wrong: point lights weighed by p(x) alone, without the set's N / N_target.
 class TrsWithoutSetSize : public LightStrategy {
  public:
-  explicit TrsWithoutSetSize(const Emitters& emitters)
+  explicit TrsWithoutSetSize(Emitters& emitters)
       : trs_(strategy(emitters, StrategyKind::trs, 1)) {}
   std::string name() const override { return "wrong"; }
   void begin_pass(std::uint64_t seed) override { trs_->begin_pass(seed); }

@@ -76,7 +76,7 @@ TEST_F(Sequences, SetFrameIsStartingThere) {
   for (const auto& [frame, seconds] : {std::pair{1, 0.5}, std::pair{5, 0.7}, std::pair{5, 0.9}}) {
     const EmissionUpdate update = moved.set_frame(frame, seconds);
     EXPECT_TRUE(update.changed()) << frame;
-    const Emitters fresh(scene, trs_test::kCpuSampler, frame, seconds);
+    Emitters fresh(scene, trs_test::kCpuSampler, frame, seconds);
     EXPECT_EQ(moved.total_density(), fresh.total_density()) << frame;
     EXPECT_EQ(std::vector<double>(moved.light_density().begin(), moved.light_density().end()),
               std::vector<double>(fresh.light_density().begin(), fresh.light_density().end()));

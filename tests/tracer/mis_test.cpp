@@ -56,7 +56,7 @@ std::string name(const StrategyOptions& o) {
 
 TEST(Mis, LightAndBsdfWeightsSumToOne) {
   const Scene scene = two_emitters();
-  const Emitters emitters(scene, trs_test::kCpuSampler);
+  Emitters emitters(scene, trs_test::kCpuSampler);
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const glm::vec3 x(0.2f, 0.1f, 0.0f), n(0, 0, 1), wo = glm::normalize(glm::vec3(0.3f, -0.2f, 1));
@@ -100,7 +100,7 @@ TEST(Mis, LightAndBsdfWeightsSumToOne) {
 // is below 0.3%).
 TEST(Mis, PdfIsANormalisedAreaDensity) {
   const Scene scene = two_emitters();
-  const Emitters emitters(scene, trs_test::kCpuSampler);
+  Emitters emitters(scene, trs_test::kCpuSampler);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
   const ShadingPoint from{glm::vec3(0.2f, 0.1f, 0.0f), glm::vec3(0, 0, 1)};

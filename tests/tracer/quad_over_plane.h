@@ -99,7 +99,7 @@ inline StrategyOptions options(StrategyKind kind, double lights = 2000) {
   return o;
 }
 
-inline std::unique_ptr<LightStrategy> strategy(const Emitters& emitters, StrategyKind kind,
+inline std::unique_ptr<LightStrategy> strategy(Emitters& emitters, StrategyKind kind,
                                         double lights = 2000) {
   return make_light_strategy(emitters, options(kind, lights));
 }

@@ -158,7 +158,7 @@ std::vector<double> counts(const LightStrategy& strategy, const Emitters& emitte
 // `uniform` (by area alone) does not.
 TEST(TexelStrategy, DrawsEachTexelByItsDensityTimesArea) {
   const TexturedQuads quads;
-  const Emitters& emitters = *quads.emitters;
+  Emitters& emitters = *quads.emitters;
   const auto shares = texel_shares(emitters, emitters.total_density());
   std::vector<double> probability;
   for (const auto& [cell, share] : shares) probability.push_back(share);

@@ -9,7 +9,7 @@ namespace tracer {
 
 namespace {
 
-std::unique_ptr<LightStrategy> make_source(const Emitters& emitters, StrategyKind kind,
+std::unique_ptr<LightStrategy> make_source(Emitters& emitters, StrategyKind kind,
                                            const StrategyOptions& options) {
   switch (kind) {
     case StrategyKind::uniform:
@@ -27,7 +27,7 @@ std::unique_ptr<LightStrategy> make_source(const Emitters& emitters, StrategyKin
 /// The strategy `kind` over the emissive triangles and the punctual lights: the tree holds them
 /// among its leaves; the others take them beside their draws, by power, as every strategy does
 /// where no triangle emits.
-std::unique_ptr<LightStrategy> make_lights(const Emitters& emitters, StrategyKind kind,
+std::unique_ptr<LightStrategy> make_lights(Emitters& emitters, StrategyKind kind,
                                            const StrategyOptions& options) {
   const bool tree = kind == StrategyKind::tree || kind == StrategyKind::tree_texel;
   if (emitters.punctual().count() == 0 || (tree && emitters.count() > 0)) return make_source(emitters, kind, options);
@@ -39,8 +39,7 @@ std::unique_ptr<LightStrategy> make_lights(const Emitters& emitters, StrategyKin
 
 bool resamplable(StrategyKind kind) { return kind != StrategyKind::ris && kind != StrategyKind::automatic; }
 
-std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,
-                                                   const StrategyOptions& options) {
+std::unique_ptr<LightStrategy> make_light_strategy(Emitters& emitters, const StrategyOptions& options) {
   if (emitters.count() == 0 && emitters.punctual().count() == 0)
     throw std::invalid_argument("the scene has no lights: no emissive triangle and no punctual light");
   if (options.kind != StrategyKind::ris) return make_lights(emitters, options.kind, options);

@@ -25,7 +25,7 @@ namespace {
 constexpr double kGainSamples = 65536;
 constexpr std::uint64_t kGainSeed = 0x7e4e1a9a1ull;
 
-double texel_gain(const Emitters& emitters) {
+double texel_gain(Emitters& emitters) {
   if (emitters.count() == 0) return 1.0;  // punctual lights alone: no texels to draw by
   lightsampler::Frame frame;
   lightsampler::FrameRequest request;
@@ -46,7 +46,7 @@ double texel_gain(const Emitters& emitters) {
 
 }  // namespace
 
-StrategyChoice choose_strategy(const Emitters& emitters, const StrategyOptions& options) {
+StrategyChoice choose_strategy(Emitters& emitters, const StrategyOptions& options) {
   if (options.kind != StrategyKind::automatic) return {options, 0.0, {}};
   StrategyChoice choice{options, texel_gain(emitters), {}};
   const bool texture_decides = choice.texel_gain >= kAutoTexelGain;

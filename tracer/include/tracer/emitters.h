@@ -1,11 +1,13 @@
 #pragma once
-// The scene's emissive triangles as light sources: their emitted radiance, and the density the
-// light sampler draws from, which is the luminance of that radiance texel for texel.
+// The scene's lights: its emissive triangles, with their emitted radiance and the density the
+// light sampler draws from (the luminance of that radiance, texel for texel), and its punctual
+// lights.
 //
-// Each emissive material becomes one density map: luminance (Rec. 709) of emissive factor times
-// emissive texture, with the emissive strength as the map's scale. Emitted radiance is read at
-// the texel the sampler names (Sampler::texel), nearest-texel, so that wherever radiance is
-// non-zero the density is too, and a light's pdf and its radiance always come from one texel.
+// Each emissive material becomes one density map (emission_maps.h): luminance (Rec. 709) of
+// emissive factor times emissive texture, with the emissive strength as the map's scale.
+// Emitted radiance is read at the texel the sampler names (Sampler::texel), nearest-texel, so
+// that wherever radiance is non-zero the density is too, and a light's pdf and its radiance
+// always come from one texel.
 
 #include <array>
 #include <cstdint>
@@ -21,6 +23,8 @@
 #include "tracer/scene.h"
 
 namespace tracer {
+
+class EmissionMaps;
 
 /// What a change of frame did to the emission, and what it took.
 struct EmissionUpdate {
@@ -69,7 +73,7 @@ class Emitters {
   /// Radiance leaving a point of a light towards its front, whatever the direction.
   glm::vec3 emission(std::uint32_t light, float b1, float b2) const;
   /// Whether a light emits from its back face too.
-  bool two_sided(std::uint32_t light) const { return emissions_[light_maps_[light]].double_sided; }
+  bool two_sided(std::uint32_t light) const;
   /// Density of the point, luminance of its texel's radiance times strength, as sampled.
   float density(std::uint32_t light, float b1, float b2) const;
   /// The integral of the density over every light (the sampler's N-bar).
@@ -78,10 +82,7 @@ class Emitters {
   std::span<const double> light_density() const { return light_density_; }
   /// The density a light's emission map has on average over the whole map, whatever part of it
   /// the light's UVs cover: mean texel luminance times strength.
-  double mean_density(std::uint32_t light) const {
-    const Emission& e = emissions_[light_maps_[light]];
-    return e.mean_luminance * e.strength;
-  }
+  double mean_density(std::uint32_t light) const;
 
   glm::vec3 position(std::uint32_t light, float b1, float b2) const;
   /// The light's corners, in the order its barycentrics weigh them (b1: second, b2: third).
@@ -92,39 +93,22 @@ class Emitters {
 
   /// The lights as the sampler's inputs (valid while this object lives).
   lightsampler::MeshView mesh() const;
-  std::span<const lightsampler::DensityMapView> maps() const { return map_views_; }
+  std::span<const lightsampler::DensityMapView> maps() const;
   /// The scene's punctual lights, sampled beside the emissive triangles.
   const PunctualLights& punctual() const { return punctual_; }
 
   /// The light sampler over the lights: the texel lookups and per-light integrals every
-  /// strategy uses, and the point lights of `trs`. None where no triangle emits.
-  lightsampler::Sampler& sampler() const { return *sampler_; }
+  /// strategy reads. None where no triangle emits.
+  const lightsampler::Sampler& sampler() const { return *sampler_; }
+  /// The same, to draw point lights with (`trs`, `auto`'s measure).
+  lightsampler::Sampler& sampler() { return *sampler_; }
   /// Builds the light sampler again with `sampler`'s options (a subdivision decided after the
   /// emitters were built: `auto`'s); the lights and their integrals stay as they are.
   void rebuild_sampler(const lightsampler::SamplerOptions& sampler);
   const EmittersSetup& setup() const { return setup_; }
 
  private:
-  /// One emissive material: radiance per texel (emissive factor times texture), its strength.
-  struct Emission {
-    std::uint32_t material = 0;
-    std::uint32_t width = 1;
-    std::uint32_t height = 1;
-    std::vector<glm::vec3> radiance;
-    std::vector<float> luminance;
-    lightsampler::Addressing addressing = lightsampler::Addressing::wrap;
-    float strength = 1.0f;
-    bool double_sided = false;
-    double mean_luminance = 0.0;  ///< mean of `luminance`, the strength not applied
-    // What the emission shows now, to tell a change of frame that changes it.
-    glm::vec3 factor{0.0f};
-    std::int64_t image_frame = 0;  ///< of the texture's sequence
-  };
-  /// The emission of material `material` at a frame and time, its texels decoded (timed into
-  /// `decode_ms`) only where they differ from `current`'s.
-  Emission emission_at(std::uint32_t material, std::int64_t frame, double seconds, const Emission* current,
-                       double& decode_ms) const;
-  void add_light(std::uint32_t triangle, std::uint32_t emission);
+  void add_light(std::uint32_t triangle, std::uint32_t map);
   /// The lights' integrals, from the sampler's counting pass.
   void integrate();
 
@@ -132,8 +116,7 @@ class Emitters {
   PunctualLights punctual_;
   std::vector<std::uint32_t> scene_triangles_;
   std::vector<std::uint32_t> lights_of_scene_;  ///< per scene triangle; kNotLight if none
-  std::vector<Emission> emissions_;
-  std::vector<lightsampler::DensityMapView> map_views_;
+  std::unique_ptr<EmissionMaps> maps_;  ///< the emission, decoded
   // The lights' mesh in lightsampler's layout.
   std::vector<float> positions_;
   std::vector<float> uvs_;

@@ -194,11 +194,11 @@ struct StrategyChoice {
 /// kAutoTexelGain (the texture decides), else `power` (drawing by the texels gains too little
 /// for its cost). The gain is measured on a frame of the emitters' light sampler, with a fixed
 /// seed: every seed of a scene renders with the same strategy.
-StrategyChoice choose_strategy(const Emitters& emitters, const StrategyOptions& options);
+StrategyChoice choose_strategy(Emitters& emitters, const StrategyOptions& options);
 
 /// Throws std::invalid_argument when the scene has no lights or `options` names `auto` (choose first).
-std::unique_ptr<LightStrategy> make_light_strategy(const Emitters& emitters,
-                                                   const StrategyOptions& options);
+/// `emitters` must outlive the strategy; `trs` draws its point lights with their sampler.
+std::unique_ptr<LightStrategy> make_light_strategy(Emitters& emitters, const StrategyOptions& options);
 
 /// A strategy and its name, as the command line, the stats and Python spell it.
 struct StrategyName {

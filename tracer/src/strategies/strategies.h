@@ -19,7 +19,7 @@ std::unique_ptr<LightStrategy> make_chosen_light_strategy(const Emitters& emitte
                                                           const TreeOptions& tree);
 
 /// The joint draws over every emitter: `trs`'s per-frame point set and `texel`'s alias table.
-std::unique_ptr<LightStrategy> make_trs_strategy(const Emitters& emitters, const StrategyOptions& options);
+std::unique_ptr<LightStrategy> make_trs_strategy(Emitters& emitters, const StrategyOptions& options);
 std::unique_ptr<LightStrategy> make_texel_strategy(const Emitters& emitters);
 
 /// `area`'s draws over the emissive triangles (none where no triangle emits) and the scene's

@@ -52,7 +52,7 @@ struct HugePages {
 
 class TrsStrategy : public LightStrategy {
  public:
-  TrsStrategy(const Emitters& emitters, const StrategyOptions& options)
+  TrsStrategy(Emitters& emitters, const StrategyOptions& options)
       : emitters_(emitters),
         sampler_(emitters.sampler()),
         target_(options.lights) {
@@ -143,7 +143,7 @@ class TrsStrategy : public LightStrategy {
 
 }  // namespace
 
-std::unique_ptr<LightStrategy> make_trs_strategy(const Emitters& emitters,
+std::unique_ptr<LightStrategy> make_trs_strategy(Emitters& emitters,
                                                  const StrategyOptions& options) {
   return std::make_unique<TrsStrategy>(emitters, options);
 }
