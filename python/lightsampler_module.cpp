@@ -121,9 +121,8 @@ E choice(const std::string& name, std::initializer_list<E> values, const char* w
 }
 
 ls::Addressing addressing(const std::string& name) {
-  if (name == "wrap") return ls::Addressing::wrap;
-  if (name == "clamp") return ls::Addressing::clamp;
-  throw py::value_error("addressing: unknown value '" + name + "' (one of wrap, clamp)");
+  if (const std::optional<ls::Addressing> a = ls::parse_addressing(name)) return *a;
+  throw py::value_error("addressing: unknown value '" + name + "' (one of wrap, clamp, mirror)");
 }
 
 ls::Backend backend(const std::string& name) {

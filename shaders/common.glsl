@@ -79,11 +79,18 @@ uint processing_index(uint64_t cdf, uint count, uint64_t sample_index) {
 
 // ---- texel lookup (core/density.h: address, cell_density, floor_to_int, point_density) ----
 
-// Cell i of any sign, wrapped or clamped into [0, n). Wrap reduces |i| in unsigned arithmetic:
-// for i < 0, the cell -1 - k (k >= 0) wraps to n - 1 - (k mod n).
+// Cell i of any sign, wrapped, clamped or mirrored into [0, n). Wrap and mirror reduce |i| in
+// unsigned arithmetic: for i < 0, the cell -1 - k (k >= 0) wraps to n - 1 - (k mod n); mirror's
+// period is 2n, where it is the cell 2n - 1 - (k mod 2n), and the period's second half reads the
+// map backwards.
 uint address(int64_t i, uint n, uint addressing) {
   if (i >= 0l && i < int64_t(n)) return uint(i);
   if (addressing == kAddressClamp) return i < 0l ? 0u : n - 1u;
+  if (addressing == kAddressMirror) {
+    uint64_t period = 2ul * uint64_t(n);
+    uint64_t m = i >= 0l ? uint64_t(i) % period : period - 1ul - uint64_t(-(i + 1l)) % period;
+    return uint(m < uint64_t(n) ? m : period - 1ul - m);
+  }
   if (i >= 0l) return uint(uint64_t(i) % uint64_t(n));
   return n - 1u - uint(uint64_t(-(i + 1l)) % uint64_t(n));
 }

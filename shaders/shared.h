@@ -30,6 +30,7 @@ LS_CONST uint kSegmentSlots = 256;
 LS_CONST uint kCellsPerRun = 16;
 LS_CONST uint kAddressWrap = 0u;
 LS_CONST uint kAddressClamp = 1u;
+LS_CONST uint kAddressMirror = 2u;
 
 /// A triangle in its map's texel space, the twin of core::TexelTriangle: a point with
 /// barycentrics (b1, b2) is at origin + b1 edge1 + b2 edge2; zero edges: UV-degenerate.

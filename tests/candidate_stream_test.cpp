@@ -177,11 +177,11 @@ TEST(CandidateStream, VectorCandidatesAreTheScalarOnes) {
 }
 
 TEST(CandidateStream, VectorAcceptanceIsTheScalarTest) {
-  // Triangles inside the map, across its edges under both addressings, at negative coordinates,
+  // Triangles inside the map, across its edges under each addressing, at negative coordinates,
   // and so far out (UVs near 2^24) that the lanes leave 32-bit range and take the 64-bit path.
   const PhiloxKey key = stream_key(12, Stream::realization);
   std::mt19937_64 rng(13);
-  for (const Addressing addressing : {Addressing::wrap, Addressing::clamp}) {
+  for (const Addressing addressing : {Addressing::wrap, Addressing::clamp, Addressing::mirror}) {
     Map m = trs_test::random_map(24, 20, 0.5, 14);
     m.addressing = addressing;
     m.scale = 0.7f;

@@ -81,6 +81,35 @@ TEST(Counting, MatchesClippingWithClampBeyondTheUnitSquare) {
   expect_matches_reference(trs_test::random_triangles(200, -1.5f, 2.5f, 5), map);
 }
 
+TEST(Counting, MatchesClippingWithMirrorBeyondTheUnitSquare) {
+  trs_test::Map map = trs_test::random_map(16, 9, 0.3, 11);
+  map.addressing = Addressing::mirror;
+  expect_matches_reference(trs_test::random_triangles(200, -1.5f, 2.5f, 12), map);
+}
+
+// Mirror addressing reads what wrap reads of the image built by hand from the map and its
+// mirror images (twice as wide and high): the same triangles with their UVs halved integrate
+// to the same N-bar_T, to rounding.
+TEST(Counting, MirrorIsWrapOverTheMirroredImageBuiltByHand) {
+  trs_test::Map map = trs_test::random_map(16, 9, 0.3, 13);
+  map.addressing = Addressing::mirror;
+  trs_test::Map mirrored{std::vector<float>(4 * map.texels.size()), 2 * map.width, 2 * map.height};
+  for (std::uint32_t y = 0; y < mirrored.height; ++y) {
+    const std::uint32_t sy = y < map.height ? y : mirrored.height - 1 - y;
+    for (std::uint32_t x = 0; x < mirrored.width; ++x) {
+      const std::uint32_t sx = x < map.width ? x : mirrored.width - 1 - x;
+      mirrored.texels[std::size_t(y) * mirrored.width + x] = map.texels[std::size_t(sy) * map.width + sx];
+    }
+  }
+  const trs_test::Mesh mesh = trs_test::random_triangles(200, -1.5f, 2.5f, 14);
+  trs_test::Mesh halved = mesh;
+  for (float& uv : halved.uvs) uv *= 0.5f;
+  const Frame a = count_only(mesh, map), b = count_only(halved, mirrored);
+  ASSERT_EQ(a.expected_counts.size(), b.expected_counts.size());
+  for (std::size_t t = 0; t < a.expected_counts.size(); ++t)
+    EXPECT_NEAR(a.expected_counts[t], b.expected_counts[t], 1e-9 * b.expected_counts[t] + 1e-12) << "triangle " << t;
+}
+
 TEST(Counting, SmallTrianglesInsideOneTexelAndSlivers) {
   trs_test::Mesh mesh = trs_test::random_triangles(100, 0.3f, 0.3005f, 7);  // within one texel or two
   const float p[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1e-3f, 0}};

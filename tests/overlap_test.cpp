@@ -303,7 +303,8 @@ TEST(Overlap, OracleTexelAreasPartitionTheTriangle) {
   // where the triangle lies inside the map. Measured: 1.4e-13 for the sums (triangles up to 28
   // texels across), 1e-15 per texel. Seed 11.
   std::mt19937_64 rng(11);
-  for (const auto addressing : {lightsampler::Addressing::wrap, lightsampler::Addressing::clamp}) {
+  for (const auto addressing : {lightsampler::Addressing::wrap, lightsampler::Addressing::clamp,
+                                 lightsampler::Addressing::mirror}) {
     for (int i = 0; i < 100; ++i) {
       const Triangle t = {random_point(rng, -6, 22), random_point(rng, -6, 22), random_point(rng, -6, 22)};
       const auto areas = trs_test::texel_areas(t.a, t.b, t.c, 16, 8, addressing);

@@ -32,7 +32,8 @@ double world_area(const lightsampler::MeshView& mesh, std::uint32_t t) {
 // N-bar_T (exact too, by the closed-form overlaps), to rounding; and where every texel is lit
 // their areas tile the triangle.
 TEST(TexelPieces, IntegrateTheDensityAsTheCountingPassDoes) {
-  for (auto addressing : {lightsampler::Addressing::wrap, lightsampler::Addressing::clamp}) {
+  for (auto addressing : {lightsampler::Addressing::wrap, lightsampler::Addressing::clamp,
+                          lightsampler::Addressing::mirror}) {
     const trs_test::Mesh mesh = wide_triangles();
     trs_test::Map map = trs_test::random_map(9, 7, 0.3, 5);
     map.addressing = addressing;

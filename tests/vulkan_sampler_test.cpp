@@ -164,10 +164,12 @@ TEST_F(VulkanSampler, OverlapFormulasCountAsOnTheCpu) {
 }
 
 TEST_F(VulkanSampler, CountsAgreeWithTheCpuBeyondTheUnitSquare) {
-  Map clamped = trs_test::random_map(16, 9, 0.3, 4);
+  Map clamped = trs_test::random_map(16, 9, 0.3, 4), mirrored = clamped;
   clamped.addressing = Addressing::clamp;
+  mirrored.addressing = Addressing::mirror;
   expect_counts_agree(trs_test::random_triangles(200, -1.5f, 2.5f, 3), {trs_test::random_map(16, 9, 0.3, 4)});
   expect_counts_agree(trs_test::random_triangles(200, -1.5f, 2.5f, 5), {clamped});
+  expect_counts_agree(trs_test::random_triangles(200, -1.5f, 2.5f, 6), {mirrored});
 }
 
 TEST_F(VulkanSampler, CountsAgreeWithTheCpuOnSliversTinyAndHugeTriangles) {
@@ -401,7 +403,7 @@ TEST_F(VulkanSampler, FewSamplesOverManyTrianglesAreTheCpus) {
   expect_same_samples_in_order(want, got);
 }
 
-TEST_F(VulkanSampler, WrapAndClampAgreeExactlyWithTheCpuFarBeyondTheUnitSquare) {
+TEST_F(VulkanSampler, EveryAddressingAgreesExactlyWithTheCpuFarBeyondTheUnitSquare) {
   // Texel addresses of cells down to -40 on maps 7 and 5 texels wide: every counting path reads
   // exactly the CPU's texels (D_T^max equal, N-bar_T equal up to float summation order), and
   // realization draws the CPU's samples, bit for bit, wherever both gave a triangle the same
@@ -411,8 +413,8 @@ TEST_F(VulkanSampler, WrapAndClampAgreeExactlyWithTheCpuFarBeyondTheUnitSquare) 
   // Triangles a few texels across with UVs over [-5, 5]^2: most lattice cells they touch have
   // negative indices far from zero.
   const Mesh mesh = scattered_triangles(400, -4.8f, 4.8f, 0.2f, 21);
-  for (Addressing addressing : {Addressing::wrap, Addressing::clamp}) {
-    SCOPED_TRACE(addressing == Addressing::wrap ? "wrap" : "clamp");
+  for (Addressing addressing : {Addressing::wrap, Addressing::clamp, Addressing::mirror}) {
+    SCOPED_TRACE(to_string(addressing));
     const std::vector<Map> maps = {distinct_map(7, 5, addressing)};
     const FrameRequest request{.seed = 9, .target_count = 2e5};
     const Frame reference = generate(*cpu(mesh, maps), request);

@@ -95,6 +95,21 @@ const char* to_string(Backend backend) {
   return "?";
 }
 
+const char* to_string(Addressing addressing) {
+  switch (addressing) {
+    case Addressing::wrap: return "wrap";
+    case Addressing::clamp: return "clamp";
+    case Addressing::mirror: return "mirror";
+  }
+  return "?";
+}
+
+std::optional<Addressing> parse_addressing(std::string_view name) {
+  for (const Addressing a : {Addressing::wrap, Addressing::clamp, Addressing::mirror})
+    if (name == to_string(a)) return a;
+  return std::nullopt;
+}
+
 const char* to_string(Pass pass) {
   switch (pass) {
     case Pass::counting: return "counting";

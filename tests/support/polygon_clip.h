@@ -86,15 +86,20 @@ struct TexelArea {
 /// The exact area of triangle (a, b, c), given in texel space (u * width, v * height), in every
 /// texel of a width x height map it overlaps, ordered by row then column. Parts of the triangle
 /// outside the map land where the map's addressing reads them (wrap: modulo the size; clamp: the
-/// border texel), so the areas always add up to the triangle's area. Texels with zero overlap
+/// border texel; mirror: modulo twice the size, the second copy reversed), so the areas always
+/// add up to the triangle's area. Texels with zero overlap
 /// are left out.
 inline std::vector<TexelArea> texel_areas(Point a, Point b, Point c, std::uint32_t width,
                                           std::uint32_t height, lightsampler::Addressing addressing) {
   auto to_map = [addressing](std::int64_t i, std::uint32_t size) {
     const auto n = static_cast<std::int64_t>(size);
-    const std::int64_t j = addressing == lightsampler::Addressing::wrap ? ((i % n) + n) % n
-                                                                        : std::clamp<std::int64_t>(i, 0, n - 1);
-    return static_cast<std::uint32_t>(j);
+    switch (addressing) {
+      case lightsampler::Addressing::wrap: return static_cast<std::uint32_t>(((i % n) + n) % n);
+      case lightsampler::Addressing::clamp: return static_cast<std::uint32_t>(std::clamp<std::int64_t>(i, 0, n - 1));
+      case lightsampler::Addressing::mirror: break;
+    }
+    const std::int64_t p = ((i % (2 * n)) + 2 * n) % (2 * n);
+    return static_cast<std::uint32_t>(p < n ? p : 2 * n - 1 - p);
   };
   const auto lo_x = static_cast<std::int64_t>(std::floor(std::min({a.x, b.x, c.x})));
   const auto hi_x = static_cast<std::int64_t>(std::ceil(std::max({a.x, b.x, c.x})));

@@ -16,8 +16,6 @@ const std::map<std::string, lightsampler::ScanOrder> kScans = {
     {"unordered", lightsampler::ScanOrder::unordered},
     {"ordered", lightsampler::ScanOrder::ordered},
     {"lookback", lightsampler::ScanOrder::lookback}};
-const std::map<std::string, lightsampler::Addressing> kAddressing = {
-    {"wrap", lightsampler::Addressing::wrap}, {"clamp", lightsampler::Addressing::clamp}};
 const std::map<std::string, MapEncoding> kEncodings = {
     {"auto", MapEncoding::automatic}, {"srgb", MapEncoding::srgb}, {"linear", MapEncoding::linear}};
 
@@ -84,7 +82,9 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
                  "the paper's rule")
       ->capture_default_str();
   app.add_option("--address", address, "what UVs outside [0, 1] read")
-      ->check(CLI::IsMember(names(kAddressing)))
+      ->check(CLI::IsMember(std::vector<std::string>{
+          lightsampler::to_string(lightsampler::Addressing::wrap), lightsampler::to_string(lightsampler::Addressing::clamp),
+          lightsampler::to_string(lightsampler::Addressing::mirror)}))
       ->capture_default_str();
   app.add_option("--map-encoding", encoding,
                  "transfer function of the map's values; auto: 8/16-bit images are sRGB unless "
@@ -117,7 +117,7 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
   options.counting = kCountings.at(counting);
   options.scan = kScans.at(scan);
   options.overlap = kOverlaps.at(overlap);
-  options.addressing = kAddressing.at(address);
+  options.addressing = lightsampler::parse_addressing(address).value();
   options.map_encoding = kEncodings.at(encoding);
   if (!out.empty()) options.out = out;
   if (!stats.empty()) options.stats = stats;

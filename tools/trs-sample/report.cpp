@@ -9,10 +9,6 @@
 namespace trs {
 namespace {
 
-const char* addressing_name(lightsampler::Addressing addressing) {
-  return addressing == lightsampler::Addressing::wrap ? "wrap" : "clamp";
-}
-
 /// Accepted samples per candidate; undefined when nothing was tried.
 std::optional<double> acceptance_rate(const lightsampler::Frame& frame) {
   if (frame.candidates == 0) return std::nullopt;
@@ -46,7 +42,7 @@ nlohmann::ordered_json stats_json(const RunReport& run) {
                  {"width", run.map.width},
                  {"height", run.map.height},
                  {"encoding", run.map.srgb_decoded ? "srgb" : "linear"},
-                 {"address", addressing_name(run.options.addressing)},
+                 {"address", lightsampler::to_string(run.options.addressing)},
                  {"scale", run.options.density_scale}};
   json["method"] = lightsampler::to_string(frame.method);
   json["backend"] = lightsampler::to_string(run.sampler.backend());
@@ -82,7 +78,7 @@ void print_summary(std::ostream& out, const RunReport& run, std::optional<double
       << " triangles\n";
   out << "density map  " << run.map.file.string() << ": " << run.map.width << " x "
       << run.map.height << ", " << (run.map.srgb_decoded ? "sRGB" : "linear") << ", "
-      << addressing_name(run.options.addressing) << ", scale " << run.options.density_scale << "\n";
+      << lightsampler::to_string(run.options.addressing) << ", scale " << run.options.density_scale << "\n";
   out << "sampler      " << lightsampler::to_string(frame.method) << " on " << lightsampler::to_string(run.sampler.backend())
       << " (" << run.sampler.device();
   if (threads(run) > 0) out << ", " << threads(run) << " threads";

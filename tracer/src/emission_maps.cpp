@@ -18,12 +18,15 @@ double ms_since(std::chrono::steady_clock::time_point start) {
 }
 
 lightsampler::Addressing addressing(const Texture& texture) {
-  if (texture.wrap_s == texture.wrap_t && texture.wrap_s != Wrap::mirrored_repeat)
-    return texture.wrap_s == Wrap::repeat ? lightsampler::Addressing::wrap
-                                          : lightsampler::Addressing::clamp;
-  throw std::invalid_argument(
-      "emissive texture " + texture.name +
-      ": the light sampler reads repeat or clamp-to-edge, the same on both axes");
+  if (texture.wrap_s != texture.wrap_t)
+    throw std::invalid_argument("emissive texture " + texture.name +
+                                ": the light sampler reads one wrap mode on both axes");
+  switch (texture.wrap_s) {
+    case Wrap::repeat: return lightsampler::Addressing::wrap;
+    case Wrap::clamp: return lightsampler::Addressing::clamp;
+    case Wrap::mirrored_repeat: return lightsampler::Addressing::mirror;
+  }
+  throw std::invalid_argument("emissive texture " + texture.name + ": unknown wrap mode");
 }
 
 lightsampler::DensityMapView view_of(const EmissionMap& m) {

@@ -21,8 +21,9 @@ struct MeshView {
   std::uint64_t vertex_count() const { return positions.size() / 3; }
 };
 
-/// What a lookup outside [0,1] in UV reads.
-enum class Addressing : std::uint32_t { wrap = 0, clamp = 1 };
+/// What a lookup outside [0,1] in UV reads: the map repeated (glTF's REPEAT), its edge texels
+/// (CLAMP_TO_EDGE), or the map repeated with every other copy mirrored (MIRRORED_REPEAT).
+enum class Addressing : std::uint32_t { wrap = 0, clamp = 1, mirror = 2 };
 
 /// A density map: samples per unit of world area, nearest-texel lookup.
 /// Texel (i, j) covers u in [i/width, (i+1)/width) and v in [j/height, (j+1)/height): row 0 is at

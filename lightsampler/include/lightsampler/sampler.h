@@ -7,6 +7,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "lightsampler/buffer.h"
@@ -199,5 +200,9 @@ const char* to_string(Overlap overlap);
 const char* to_string(Counting counting);
 const char* to_string(Backend backend);
 const char* to_string(Pass pass);
+/// "wrap", "clamp" or "mirror".
+const char* to_string(Addressing addressing);
+/// The mode to_string() names; none for another name.
+std::optional<Addressing> parse_addressing(std::string_view name);
 
 }  // namespace lightsampler

@@ -22,6 +22,10 @@ struct DensityMap {
 inline std::uint32_t address(std::int64_t i, std::uint32_t n, Addressing addressing) {
   if (std::uint64_t(i) < n) return std::uint32_t(i);  // the common case: inside the map
   if (addressing == Addressing::clamp) return i < 0 ? 0u : n - 1;
+  if (addressing == Addressing::mirror) {  // period 2n: the map, then the map mirrored
+    const std::int64_t period = 2 * std::int64_t(n), r = i % period, m = r < 0 ? r + period : r;
+    return std::uint32_t(m < n ? m : period - 1 - m);
+  }
   const std::int64_t r = i % std::int64_t(n);
   return std::uint32_t(r < 0 ? r + n : r);
 }

@@ -102,7 +102,8 @@ void validate_map(const DensityMapView& map, std::size_t index) {
   if (!std::isfinite(map.scale) || map.scale < 0)
     throw std::invalid_argument(name + ": scale " + std::to_string(map.scale) +
                                 " is not a finite non-negative number");
-  if (map.addressing != Addressing::wrap && map.addressing != Addressing::clamp)
+  if (map.addressing != Addressing::wrap && map.addressing != Addressing::clamp &&
+      map.addressing != Addressing::mirror)
     throw std::invalid_argument(name + ": unknown addressing mode");
   for (std::size_t i = 0; i < map.texels.size(); ++i) {
     const float d = map.texels[i];
