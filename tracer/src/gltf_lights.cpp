@@ -26,7 +26,10 @@ int light_index(const Document& document, const tinygltf::Node& node, const std:
   if (!(index >= 0.0 && index < double(count) && index == std::floor(index))) {
     std::ostringstream text;
     text << what << ": KHR_lights_punctual light ";
-    if (std::isnan(index)) text << "(none given)"; else text << index;
+    if (std::isnan(index))
+      text << "(none given)";
+    else
+      text << index;
     text << " is not one of the file's " << count << " lights";
     document.fail(text.str());
   }
