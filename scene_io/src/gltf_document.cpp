@@ -313,6 +313,22 @@ std::optional<std::vector<glm::vec3>> Document::vec3_attribute(const tinygltf::P
   return vec3s(*data, name, what);
 }
 
+std::optional<std::vector<glm::vec4>> Document::vec4_attribute(const tinygltf::Primitive& primitive,
+                                                               const std::string& name,
+                                                               std::size_t vertex_count,
+                                                               const std::string& what) const {
+  const auto data = vertex_attribute(primitive, name, vertex_count, what);
+  if (!data) return std::nullopt;
+  if (data->component_type != TINYGLTF_COMPONENT_TYPE_FLOAT || data->components != 4)
+    fail(what + ": " + name + " must be float VEC4");
+  std::vector<glm::vec4> values(data->count);
+  for (std::size_t i = 0; i < data->count; ++i) {
+    const unsigned char* e = data->element(i);
+    values[i] = {load<float>(e), load<float>(e + 4), load<float>(e + 8), load<float>(e + 12)};
+  }
+  return values;
+}
+
 std::optional<std::vector<glm::vec2>> Document::vec2_attribute(const tinygltf::Primitive& primitive,
                                                                const std::string& name,
                                                                std::size_t vertex_count,

@@ -46,6 +46,8 @@ struct Header {
   int width = 0;
   int height = 0;
   int channels = 0;  ///< as stored (RGBA: 4)
+  /// The last of 2 or 4 channels is alpha (grey and alpha, RGBA), in the order read() gives them.
+  bool alpha = false;
   bool deep = false;
   bool integer = false;          ///< stored as 8- or 16-bit integers
   bool declared_linear = false;  ///< the metadata says linear values, or data that is not colour
@@ -64,7 +66,7 @@ class Decoder {
 
   const Header& header() const { return header_; }
 
-  /// The first `channels` channels (1 or 3) of every pixel as floats, row-major from the top
+  /// The first `channels` channels (1 to 4) of every pixel as floats, row-major from the top
   /// row: values as stored, integers scaled to [0, 1]. Throws CodecError when the pixels cannot
   /// be decoded (a truncated or corrupt file).
   std::vector<float> read(int channels);

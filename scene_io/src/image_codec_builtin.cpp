@@ -139,10 +139,13 @@ Header exr_header(const Imf::Header& header) {
   int channels = 0;
   for (auto channel = header.channels().begin(); channel != header.channels().end(); ++channel)
     ++channels;
+  // channel_order puts A right after R, G, B or after Y.
+  const std::vector<std::string> names = channel_order(header.channels());
   return {.format = "openexr",
           .width = int(width),
           .height = int(height),
           .channels = channels,
+          .alpha = (channels == 2 || channels == 4) && names[std::size_t(channels) - 1] == "A",
           .deep = header.hasType() && Imf::isDeepData(header.type())};
 }
 
@@ -176,11 +179,12 @@ Header stb_header(Bytes bytes) {
           .width = width,
           .height = height,
           .channels = channels,
+          .alpha = channels == 2 || channels == 4,  // stb_image's grey-alpha and RGBA
           .integer = !stbi_is_hdr_from_memory(bytes.data(), int(bytes.size()))};
 }
 
 /// Samples as stb_image returns them (its conversion to `channels` keeps the first channel of
-/// grey and alpha, and drops alpha from RGBA) as floats, divided by `one`: the sample for 1.
+/// grey and alpha, and drops alpha from RGBA where 3 are asked for) as floats, divided by `one`: the sample for 1.
 template <class Sample>
 std::vector<float> to_floats(Sample* samples, int width, int height, const Header& header,
                              int channels, float one) {

@@ -40,6 +40,7 @@ Header header_of(const OIIO::ImageInput& input) {
           .width = spec.width,
           .height = spec.height,
           .channels = spec.nchannels,
+          .alpha = (spec.nchannels == 2 || spec.nchannels == 4) && spec.alpha_channel == spec.nchannels - 1,
           .deep = spec.deep,
           .integer = integer_format(spec.format),
           .declared_linear = declared_linear(spec)};

@@ -27,7 +27,7 @@ image_codec::Decoder open_image(std::span<const unsigned char> bytes, const std:
 }
 
 DecodedImage decode(image_codec::Decoder& decoder, const std::filesystem::path& file,
-                    const std::string& context) {
+                    const std::string& context, bool alpha) {
   auto fail = [&](const std::string& problem) { throw FileError(file, context + problem); };
   const image_codec::Header& header = decoder.header();
   if (header.deep) fail("deep images are not supported");
@@ -37,9 +37,10 @@ DecodedImage decode(image_codec::Decoder& decoder, const std::filesystem::path& 
   DecodedImage image;
   image.width = static_cast<std::uint32_t>(header.width);
   image.height = static_cast<std::uint32_t>(header.height);
-  // Only the channels that make the colour or the density are read: an RGBA image would spend a
-  // quarter of its memory on alpha.
+  // Only the channels that make the colour or the density are read, and alpha where it is
+  // asked for: an RGBA image would otherwise spend a quarter of its memory on alpha.
   image.channels = header.channels >= 3 ? 3 : 1;
+  if (alpha && header.alpha) ++image.channels;
   image.integer = header.integer;
   image.declared_linear = header.declared_linear;
   try {

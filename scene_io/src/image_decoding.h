@@ -17,7 +17,7 @@ namespace trs {
 struct DecodedImage {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
-  int channels = 0;           ///< 1 or 3
+  int channels = 0;           ///< 1 or 3; 2 or 4 with alpha last (decode's `alpha`)
   std::vector<float> pixels;  ///< `channels` per pixel, row-major, row 0 = the image's top row
   bool integer = false;          ///< as image_codec::Header
   bool declared_linear = false;  ///< as image_codec::Header
@@ -31,10 +31,11 @@ image_codec::Decoder open_image(const std::filesystem::path& file);
 image_codec::Decoder open_image(std::span<const unsigned char> bytes, const std::string& format,
                                 const std::filesystem::path& file, const std::string& context);
 
-/// Checks the opened image's header and decodes its pixels. Throws FileError naming `file`:
-/// deep data, no pixels, too many texels, truncated or corrupt pixel data.
+/// Checks the opened image's header and decodes its pixels: grey or RGB, and alpha after them
+/// where `alpha` is asked for and the image has it. Throws FileError naming `file`: deep data,
+/// no pixels, too many texels, truncated or corrupt pixel data.
 DecodedImage decode(image_codec::Decoder& decoder, const std::filesystem::path& file,
-                    const std::string& context);
+                    const std::string& context, bool alpha = false);
 
 /// open_image, then decode.
 DecodedImage decode_image(const std::filesystem::path& file);

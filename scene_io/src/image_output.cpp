@@ -31,15 +31,25 @@ void write_atomically(const std::filesystem::path& file,
   output.commit();
 }
 
-/// R, G, B per pixel, a grey image's one channel repeated.
+/// R, G, B per pixel, a grey image's one channel repeated; alpha apart.
 Image to_rgb(DecodedImage decoded) {
   Image image;
   image.width = decoded.width;
   image.height = decoded.height;
   image.integer = decoded.integer;
+  const std::size_t pixels = std::size_t(decoded.width) * decoded.height;
+  const auto colours = std::size_t(decoded.channels >= 3 ? 3 : 1);
+  if (decoded.channels == 2 || decoded.channels == 4) {  // alpha last: take it out
+    const std::size_t stride = colours + 1;
+    image.alpha.resize(pixels);
+    for (std::size_t i = 0; i < pixels; ++i) {
+      image.alpha[i] = decoded.pixels[stride * i + colours];
+      std::copy_n(&decoded.pixels[stride * i], colours, &decoded.pixels[colours * i]);
+    }
+    decoded.pixels.resize(colours * pixels);
+  }
   image.rgb = std::move(decoded.pixels);
-  if (decoded.channels == 1) {  // spread in place, from the back
-    const std::size_t pixels = image.rgb.size();
+  if (colours == 1) {  // spread in place, from the back
     image.rgb.resize(3 * pixels);
     for (std::size_t i = pixels; i-- > 0;) std::fill_n(&image.rgb[3 * i], 3, image.rgb[i]);
   }
@@ -87,7 +97,10 @@ Image read_exr(const std::filesystem::path& file) {
   return to_rgb(decode(decoder, file, ""));
 }
 
-Image read_image(const std::filesystem::path& file) { return to_rgb(decode_image(file)); }
+Image read_image(const std::filesystem::path& file, Alpha alpha) {
+  image_codec::Decoder decoder = open_image(file);
+  return to_rgb(decode(decoder, file, "", alpha == Alpha::keep));
+}
 
 std::pair<std::uint32_t, std::uint32_t> image_size(const std::filesystem::path& file) {
   const image_codec::Decoder decoder = open_image(file);
@@ -95,10 +108,10 @@ std::pair<std::uint32_t, std::uint32_t> image_size(const std::filesystem::path& 
 }
 
 Image read_image(std::span<const unsigned char> bytes, const std::string& format,
-                 const std::filesystem::path& file, const std::string& what) {
+                 const std::filesystem::path& file, const std::string& what, Alpha alpha) {
   const std::string context = what + ": ";
   image_codec::Decoder decoder = open_image(bytes, format, file, context);
-  return to_rgb(decode(decoder, file, context));
+  return to_rgb(decode(decoder, file, context, alpha == Alpha::keep));
 }
 
 }  // namespace trs

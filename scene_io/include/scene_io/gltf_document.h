@@ -59,6 +59,11 @@ class Document {
                                                        const std::string& name,
                                                        std::size_t vertex_count,
                                                        const std::string& what) const;
+  /// A float VEC4 attribute (TANGENT) with one element per vertex; nullopt where absent.
+  std::optional<std::vector<glm::vec4>> vec4_attribute(const tinygltf::Primitive& primitive,
+                                                       const std::string& name,
+                                                       std::size_t vertex_count,
+                                                       const std::string& what) const;
   /// A VEC2 attribute (TEXCOORD_n) with one element per vertex: float, or normalized unsigned
   /// byte or short as glTF allows for texture coordinates; nullopt where absent.
   std::optional<std::vector<glm::vec2>> vec2_attribute(const tinygltf::Primitive& primitive,

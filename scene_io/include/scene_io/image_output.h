@@ -20,6 +20,9 @@ struct Image {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   std::vector<float> rgb;  ///< 3 per pixel, row-major, row 0 = the image's top row
+  /// 1 per pixel, as stored (never sRGB-encoded), where it was asked for and the file has it;
+  /// else empty.
+  std::vector<float> alpha;
   /// The file stores 8- or 16-bit integers: colour stored so is display-encoded (sRGB) by
   /// convention, whereas float files hold linear values. The values here are as stored.
   bool integer = false;
@@ -51,8 +54,12 @@ void write_png(const std::filesystem::path& file, std::uint32_t width, std::uint
 /// is an error, as comparing renders through an 8-bit file would compare its rounding.
 Image read_exr(const std::filesystem::path& file);
 
-/// Reads any image the codec decodes: the first subimage's R, G, B (grey repeated).
-Image read_image(const std::filesystem::path& file);
+/// Whether reading an image keeps its alpha channel.
+enum class Alpha : bool { drop, keep };
+
+/// Reads any image the codec decodes: the first subimage's R, G, B (grey repeated), and its
+/// alpha where `alpha` keeps it.
+Image read_image(const std::filesystem::path& file, Alpha alpha = Alpha::drop);
 
 /// The width and height of an image file, from its header alone. Throws FileError naming
 /// `file`, as read_image.
@@ -62,6 +69,6 @@ std::pair<std::uint32_t, std::uint32_t> image_size(const std::filesystem::path& 
 /// is an extension ("png", "jpeg") and `what` names the image in messages. Formats that the
 /// codec cannot read from memory are an error: nothing is written to disk.
 Image read_image(std::span<const unsigned char> bytes, const std::string& format,
-                 const std::filesystem::path& file, const std::string& what);
+                 const std::filesystem::path& file, const std::string& what, Alpha alpha = Alpha::drop);
 
 }  // namespace trs
