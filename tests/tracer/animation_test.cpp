@@ -66,7 +66,7 @@ TEST_F(Sequences, SetFrameIsStartingThere) {
   Scene scene;
   Material light;
   light.emissive_factor = glm::vec3(1.0f);
-  light.emissive_texture = trs_test::add_random_texture(scene, 8, 4, 0.3, 1);
+  light.emissive_texture.texture = trs_test::add_random_texture(scene, 8, 4, 0.3, 1);
   scene.textures[0].frames = read_image_sequence(file("scene.gltf"), "f%d.png", 8, 4, "image 0");
   light.emissive_strength_keys = Keyframes{{0.0f, 1.0f}, {glm::vec3(2.0f), glm::vec3(5.0f)}, false};
   trs_test::add_quad(scene, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}, trs_test::add_material(scene, light));

@@ -60,7 +60,7 @@ double albedo(const Bsdf& bsdf, glm::vec3 n, glm::vec3 wo) {
 
 TEST(Furnace, OneBounceReturnsEmissionPlusAlbedo) {
   const Scene scene = furnace();
-  const Geometry geometry(scene.mesh);
+  const Geometry geometry(scene);
   Emitters emitters(scene, trs_test::kCpuSampler);
   const glm::vec3 eye(0.2f, -0.3f, 0.1f), target(0.4f, 0.1f, -1.0f);  // onto the z = -1 wall
   const Ray ray{eye, glm::normalize(target - eye)};

@@ -46,12 +46,12 @@ Scene scattered_emitters(int count, std::uint64_t seed) {
   std::uniform_real_distribution<float> unit(0.0f, 1.0f), signed_unit(-1.0f, 1.0f);
   Material textured;
   textured.emissive_factor = glm::vec3(1.0f);
-  textured.emissive_texture = trs_test::add_random_texture(scene, 16, 16, 0.3, seed + 1);
+  textured.emissive_texture.texture = trs_test::add_random_texture(scene, 16, 16, 0.3, seed + 1);
   Material two_sided = textured;
   two_sided.double_sided = true;
   two_sided.emissive_strength = 2.0f;
   Material black = textured;
-  black.emissive_texture = trs_test::add_random_texture(scene, 4, 4, 1.0, seed + 2);
+  black.emissive_texture.texture = trs_test::add_random_texture(scene, 4, 4, 1.0, seed + 2);
   Material plain;
   plain.emissive_factor = glm::vec3(0.9f, 0.5f, 0.2f);
   const std::uint32_t materials[] = {trs_test::add_material(scene, textured), trs_test::add_material(scene, two_sided),
@@ -64,7 +64,7 @@ Scene scattered_emitters(int count, std::uint64_t seed) {
     for (int k = 0; k < 3; ++k) {
       const glm::vec3 offset(signed_unit(rng), signed_unit(rng), signed_unit(rng));
       m.positions.push_back(degenerate ? centre + float(k) * size * glm::vec3(1, 0, 0) : centre + size * offset);
-      m.uvs.emplace_back(unit(rng), unit(rng));
+      m.uvs[0].emplace_back(unit(rng), unit(rng));
       m.indices.push_back(std::uint32_t(m.positions.size() - 1));
     }
     m.materials.push_back(materials[t % 7 == 3 ? 2 : t % 3 == 1 ? 1 : t % 5 == 2 ? 3 : 0]);
@@ -269,7 +269,7 @@ TEST(LightTree, ADeepTreeStaysWithinItsTrails) {
     const glm::vec3 c(std::pow(1.08f, float(t)), 0.0f, 0.0f);
     const auto base = std::uint32_t(scene.mesh.positions.size());
     scene.mesh.positions.insert(scene.mesh.positions.end(), {c, c + glm::vec3(0.3f, 0, 0), c + glm::vec3(0, 0.3f, 0)});
-    scene.mesh.uvs.insert(scene.mesh.uvs.end(), {glm::vec2(0), glm::vec2(0), glm::vec2(0)});
+    scene.mesh.uvs[0].insert(scene.mesh.uvs[0].end(), {glm::vec2(0), glm::vec2(0), glm::vec2(0)});
     scene.mesh.indices.insert(scene.mesh.indices.end(), {base, base + 1, base + 2});
     scene.mesh.materials.push_back(m);
   }

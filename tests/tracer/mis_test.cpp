@@ -28,9 +28,9 @@ Scene two_emitters() {
   Scene scene;
   Material a;
   a.emissive_factor = glm::vec3(1.0f);
-  a.emissive_texture = trs_test::add_random_texture(scene, 16, 8, 0.5, 21);
+  a.emissive_texture.texture = trs_test::add_random_texture(scene, 16, 8, 0.5, 21);
   Material b = a;
-  b.emissive_texture = trs_test::add_random_texture(scene, 5, 7, 0.2, 22);
+  b.emissive_texture.texture = trs_test::add_random_texture(scene, 5, 7, 0.2, 22);
   b.emissive_strength = 4.0f;
   const std::uint32_t ma = trs_test::add_material(scene, a), mb = trs_test::add_material(scene, b);
   trs_test::add_quad(scene, {-1, -1, 2}, {-1, 1, 2}, {1, 1, 2}, {1, -1, 2}, ma);

@@ -3,6 +3,7 @@
 // radiance the plane reflects along one ray, direct lighting only, by quadrature over the texels.
 
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -30,19 +31,22 @@ struct QuadOverPlane {
   std::unique_ptr<Geometry> geometry;
   std::unique_ptr<Emitters> emitters;
 
-  explicit QuadOverPlane(const lightsampler::SamplerOptions& sampler = kCpuSampler) {
+  /// `edit` changes the scene before its geometry and lights are built.
+  explicit QuadOverPlane(const lightsampler::SamplerOptions& sampler = kCpuSampler,
+                         const std::function<void(Scene&)>& edit = {}) {
     Material light;
     light.base_color = glm::vec3(0.0f);
     light.emissive_factor = glm::vec3(1.0f, 0.9f, 0.8f);
     light.emissive_strength = kStrength;
-    light.emissive_texture = add_random_texture(scene, kTexWidth, kTexHeight, 0.4, 3);
+    light.emissive_texture.texture = add_random_texture(scene, kTexWidth, kTexHeight, 0.4, 3);
     const std::uint32_t emitter = add_material(scene, light);
     const std::uint32_t floor = add_material(scene, matte({0.8f, 0.6f, 0.4f}, 0.7f));
     // Corners in UV order (0,0) (1,0) (1,1) (0,1); clockwise seen from above: facing down.
     add_quad(scene, {-0.5f, -0.5f, 1}, {-0.5f, 0.5f, 1}, {0.5f, 0.5f, 1},
                        {0.5f, -0.5f, 1}, emitter);
     add_quad(scene, {-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}, floor);
-    geometry = std::make_unique<Geometry>(scene.mesh);
+    if (edit) edit(scene);
+    geometry = std::make_unique<Geometry>(scene);
     emitters = std::make_unique<Emitters>(scene, sampler);
   }
 
@@ -58,6 +62,15 @@ struct QuadOverPlane {
   /// The integral over the quad of f(wo, wi) Le cos(light) / r^2, midpoint rule on 16 x 16
   /// sub-cells of every texel (the integrand is smooth inside a texel).
   glm::dvec3 expected() const {
+    return integrate([&](double u, double v) {
+      return radiance_at(std::uint32_t(u * kTexWidth), std::uint32_t(v * kTexHeight));
+    }, kTexWidth, kTexHeight);
+  }
+
+  /// The same integral of the emitted radiance `le` at the quad's (u, v), midpoint rule on
+  /// 16 x 16 sub-cells of a grid of cells_u x cells_v cells, inside which `le` must be constant.
+  glm::dvec3 integrate(const std::function<glm::dvec3(double u, double v)>& le_at, std::uint32_t cells_u,
+                       std::uint32_t cells_v) const {
     const Material& m = scene.materials[1];
     const Bsdf bsdf({m.base_color, m.metallic, m.roughness}, {0, 0, 1});
     const glm::vec3 wo = glm::normalize(eye - point);
@@ -65,20 +78,20 @@ struct QuadOverPlane {
     glm::dvec3 sum(0.0);
     // add_quad gives corner k UV (0,0) (1,0) (1,1) (0,1); here those corners are
     // (-.5,-.5) (-.5,.5) (.5,.5) (.5,-.5): u runs along +y, v along +x.
-    for (std::uint32_t j = 0; j < kTexHeight; ++j) {
-      for (std::uint32_t i = 0; i < kTexWidth; ++i) {
-        const glm::dvec3 le = radiance_at(i, j);
+    for (std::uint32_t j = 0; j < cells_v; ++j) {
+      for (std::uint32_t i = 0; i < cells_u; ++i) {
+        const glm::dvec3 le = le_at((i + 0.5) / cells_u, (j + 0.5) / cells_v);
         if (le == glm::dvec3(0.0)) continue;
         for (int a = 0; a < kSub; ++a) {
           for (int b = 0; b < kSub; ++b) {
-            const double u = (i + (a + 0.5) / kSub) / kTexWidth;
-            const double v = (j + (b + 0.5) / kSub) / kTexHeight;
+            const double u = (i + (a + 0.5) / kSub) / cells_u;
+            const double v = (j + (b + 0.5) / kSub) / cells_v;
             const glm::vec3 y(float(-0.5 + v), float(-0.5 + u), 1.0f);
             const glm::vec3 d = y - point;
             const float r2 = glm::dot(d, d);
             const glm::vec3 wi = d / std::sqrt(r2);
             const double cos_light = wi.z;  // the emitter faces -z
-            const double area = 1.0 / (double(kTexWidth) * kTexHeight * kSub * kSub);
+            const double area = 1.0 / (double(cells_u) * cells_v * kSub * kSub);
             sum += glm::dvec3(bsdf.eval(wo, wi)) * le * (cos_light / r2 * area);
           }
         }

@@ -39,7 +39,7 @@ struct CubeOverPlane {
     light.base_color = glm::vec3(0.0f);
     light.emissive_factor = glm::vec3(1.0f);
     light.emissive_strength = 5.0f;
-    light.emissive_texture = trs_test::add_random_texture(scene, 8, 8, 0.3, 9);
+    light.emissive_texture.texture = trs_test::add_random_texture(scene, 8, 8, 0.3, 9);
     const std::uint32_t emitter = trs_test::add_material(scene, light);
     // Cube [-0.3, 0.3]^2 x [1.2, 1.8]; each face counter-clockwise seen from outside.
     const glm::vec3 c[8] = {{-.3f, -.3f, 1.2f}, {.3f, -.3f, 1.2f}, {.3f, .3f, 1.2f}, {-.3f, .3f, 1.2f},
@@ -49,7 +49,7 @@ struct CubeOverPlane {
     for (const auto& f : faces) trs_test::add_quad(scene, c[f[0]], c[f[1]], c[f[2]], c[f[3]], emitter);
     const std::uint32_t floor = trs_test::add_material(scene, trs_test::matte(glm::vec3(0.7f), 0.8f));
     trs_test::add_quad(scene, {-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}, floor);
-    geometry = std::make_unique<Geometry>(scene.mesh);
+    geometry = std::make_unique<Geometry>(scene);
     emitters = std::make_unique<Emitters>(scene, trs_test::kCpuSampler);
   }
 

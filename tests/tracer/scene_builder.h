@@ -21,7 +21,7 @@ inline void add_quad(tracer::Scene& scene, glm::vec3 p0, glm::vec3 p1, glm::vec3
   tracer::Mesh& m = scene.mesh;
   const auto base = std::uint32_t(m.positions.size());
   m.positions.insert(m.positions.end(), {p0, p1, p2, p3});
-  m.uvs.insert(m.uvs.end(), {{0, 0}, {1, 0}, {1, 1}, {0, 1}});
+  m.uvs[0].insert(m.uvs[0].end(), {{0, 0}, {1, 0}, {1, 1}, {0, 1}});
   m.indices.insert(m.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
   m.materials.insert(m.materials.end(), {material, material});
 }

@@ -131,7 +131,7 @@ TEST_F(SceneIoTest, TransformsApplyToPositionsAndNormals) {
   expect_near(m.normals[m.indices[0]], glm::normalize(glm::vec3(-0.5f, 1, 0)));
   expect_near(m.normals[m.indices[3]], glm::normalize(glm::vec3(-1, 1, 0)));
   expect_near(m.normals[m.indices[4]], {0, 0, 1});
-  for (const glm::vec2& uv : m.uvs) EXPECT_EQ(uv, glm::vec2(0.0f));
+  for (const glm::vec2& uv : m.uvs[0]) EXPECT_EQ(uv, glm::vec2(0.0f));
   // No materials in the file: one default, shared.
   ASSERT_EQ(scene.materials.size(), 1u);
   EXPECT_EQ(m.materials, (std::vector<std::uint32_t>{0, 0}));
@@ -218,13 +218,13 @@ TEST_F(SceneIoTest, MaterialsAndTextures) {
   EXPECT_FALSE(scene.materials[2].double_sided);
 
   ASSERT_EQ(scene.textures.size(), 5u);
-  const tracer::Texture& base = scene.textures.at(std::size_t(lamp.base_color_texture));
-  const tracer::Texture& data = scene.textures.at(std::size_t(lamp.metallic_roughness_texture));
-  const tracer::Texture& emissive = scene.textures.at(std::size_t(lamp.emissive_texture));
+  const tracer::Texture& base = scene.textures.at(std::size_t(lamp.base_color_texture.texture));
+  const tracer::Texture& data = scene.textures.at(std::size_t(lamp.metallic_roughness_texture.texture));
+  const tracer::Texture& emissive = scene.textures.at(std::size_t(lamp.emissive_texture.texture));
   const tracer::Texture& embedded =
-      scene.textures.at(std::size_t(scene.materials[1].base_color_texture));
+      scene.textures.at(std::size_t(scene.materials[1].base_color_texture.texture));
   const tracer::Texture& data_uri =
-      scene.textures.at(std::size_t(scene.materials[1].emissive_texture));
+      scene.textures.at(std::size_t(scene.materials[1].emissive_texture.texture));
   ASSERT_EQ(base.width, 2u);
   ASSERT_EQ(base.height, 1u);
   expect_near(base.texels[0], glm::vec3(0.21586f), 1e-4f);      // sRGB 128 decoded
@@ -307,6 +307,110 @@ TEST_F(SceneIoTest, PunctualLightsInTheRenderersUnits) {
 
 // An extension the file requires and the renderer does not implement is refused by name; one it
 // implements is not.
+/// An 8-bit RGBA PNG of `rgba` (4 bytes per pixel, top row first), its pixels deflate-stored:
+/// the image writers write RGB only.
+std::string png_rgba(std::uint32_t width, std::uint32_t height, const std::vector<unsigned char>& rgba) {
+  auto crc32 = [](const std::string& bytes) {
+    std::uint32_t crc = 0xffffffffu;
+    for (const char c : bytes) {
+      crc ^= std::uint8_t(c);
+      for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    return crc ^ 0xffffffffu;
+  };
+  auto be32 = [](std::uint32_t v) {
+    return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+  };
+  auto chunk = [&](const std::string& type, const std::string& data) {
+    return be32(std::uint32_t(data.size())) + type + data + be32(crc32(type + data));
+  };
+  std::string raw;  // each row after its filter byte 0
+  for (std::uint32_t y = 0; y < height; ++y) {
+    raw += '\0';
+    raw.append(reinterpret_cast<const char*>(&rgba[4 * std::size_t(y) * width]), 4 * std::size_t(width));
+  }
+  std::uint32_t a = 1, b = 0;  // Adler-32
+  for (const char c : raw) {
+    a = (a + std::uint8_t(c)) % 65521;
+    b = (b + a) % 65521;
+  }
+  const auto length = std::uint16_t(raw.size());  // one stored block: small images only
+  const std::string zlib = std::string{0x78, 0x01, 0x01} + char(length & 0xff) + char(length >> 8) +
+                           char(~length & 0xff) + char((~length >> 8) & 0xff) + raw + be32((b << 16) | a);
+  const std::string header = be32(width) + be32(height) + std::string{8, 6, 0, 0, 0};
+  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", header) + chunk("IDAT", zlib) + chunk("IEND", "");
+}
+
+TEST_F(SceneIoTest, AlphaNormalMapsTextureTransformsAndUvSets) {
+  const std::string png = png_rgba(2, 1, {128, 128, 128, 255, 255, 0, 64, 51});
+  std::ofstream(file("rgba.png"), std::ios::binary) << png;
+  Gltf gltf;
+  gltf.doc["extensionsUsed"] = {"KHR_texture_transform"};
+  gltf.doc["extensionsRequired"] = {"KHR_texture_transform"};
+  gltf.doc["images"] = {{{"uri", "rgba.png"}}};
+  gltf.doc["textures"] = {{{"source", 0}}};
+  const json quarter_turn = {{"KHR_texture_transform",
+                              {{"offset", {0, 1}}, {"rotation", 1.5707963267948966}, {"scale", {0.5, 0.5}}, {"texCoord", 1}}}};
+  gltf.doc["materials"] = {
+      {{"pbrMetallicRoughness", {{"baseColorFactor", {1, 1, 1, 0.8}}, {"baseColorTexture", {{"index", 0}}}}},
+       {"alphaMode", "MASK"},
+       {"alphaCutoff", 0.3},
+       {"normalTexture", {{"index", 0}, {"scale", 0.5}, {"texCoord", 1}}},
+       {"emissiveFactor", {1, 1, 1}},
+       {"emissiveTexture", {{"index", 0}, {"extensions", quarter_turn}}}},
+      {{"alphaMode", "BLEND"}}};
+  const std::vector<glm::vec2> uv1 = {{0.25f, 0.5f}, {1, 0}, {0, 1}};
+  const std::vector<glm::vec4> tangents = {{1, 0, 0, -1}, {1, 0, 0, -1}, {1, 0, 0, -1}};
+  gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2},
+                                {{"material", 0},
+                                 {"attributes", {{"TEXCOORD_1", gltf.accessor(uv1, kFloat, "VEC2")},
+                                                 {"TANGENT", gltf.accessor(tangents, kFloat, "VEC4")}}}})}});
+  gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2}, {{"material", 1}})}});  // neither TEXCOORD_1 nor TANGENT
+  const tracer::Scene scene = tracer::load_gltf_scene(gltf.write(dir_, "materials"));
+
+  const tracer::Material& cutout = scene.materials[0];
+  EXPECT_EQ(cutout.alpha_mode, tracer::AlphaMode::mask);
+  EXPECT_FLOAT_EQ(cutout.alpha_cutoff, 0.3f);
+  EXPECT_FLOAT_EQ(cutout.alpha, 0.8f);
+  EXPECT_EQ(scene.materials[1].alpha_mode, tracer::AlphaMode::blend);
+  const tracer::Texture& base = scene.textures.at(std::size_t(cutout.base_color_texture.texture));
+  ASSERT_EQ(base.alpha.size(), 2u);  // as stored: alpha is never sRGB-encoded
+  EXPECT_FLOAT_EQ(base.alpha[0], 1.0f);
+  EXPECT_FLOAT_EQ(base.alpha[1], 0.2f);
+  expect_near(base.texels[0], glm::vec3(0.21586f), 1e-4f);
+  EXPECT_TRUE(scene.textures.at(std::size_t(cutout.emissive_texture.texture)).alpha.empty());
+
+  EXPECT_EQ(cutout.normal_texture.uv_set, 1u);
+  EXPECT_FLOAT_EQ(cutout.normal_scale, 0.5f);
+  EXPECT_EQ(cutout.base_color_texture.uv_set, 0u);
+  // The extension's own example: the lower-left quadrant, turned a quarter; its texCoord wins.
+  const tracer::TextureRef& emission = cutout.emissive_texture;
+  EXPECT_EQ(emission.uv_set, 1u);
+  for (const auto& [from, to] : {std::pair{glm::vec2(0, 0), glm::vec2(0, 1)}, std::pair{glm::vec2(1, 0), glm::vec2(0, 0.5f)},
+                                 std::pair{glm::vec2(0, 1), glm::vec2(0.5f, 1)}, std::pair{glm::vec2(1, 1), glm::vec2(0.5f, 0.5f)}}) {
+    const glm::vec2 mapped = emission.transform(from);
+    EXPECT_NEAR(mapped.x, to.x, 1e-6f);
+    EXPECT_NEAR(mapped.y, to.y, 1e-6f);
+  }
+
+  ASSERT_EQ(scene.mesh.uvs[1].size(), 6u);  // (0, 0) for the primitive without a second set
+  EXPECT_EQ(scene.mesh.uvs[1][0], uv1[0]);
+  EXPECT_EQ(scene.mesh.uvs[1][5], glm::vec2(0.0f));
+  ASSERT_EQ(scene.mesh.tangents.size(), 6u);  // none (zero) for the primitive without them
+  EXPECT_EQ(scene.mesh.tangents[0], glm::vec4(1, 0, 0, -1));
+  EXPECT_EQ(scene.mesh.tangents[3], glm::vec4(0.0f));
+}
+
+TEST_F(SceneIoTest, MirroringTurnsTheTangentsHandedness) {
+  Gltf gltf;
+  const std::vector<glm::vec4> tangents = {{0, 1, 0, 1}, {0, 1, 0, 1}, {0, 1, 0, 1}};
+  gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2}, {{"attributes", {{"TANGENT", gltf.accessor(tangents, kFloat, "VEC4")}}}})},
+             {"scale", {-2, 1, 1}}});
+  const tracer::Scene scene = tracer::load_gltf_scene(gltf.write(dir_, "mirrored"));
+  ASSERT_EQ(scene.mesh.tangents.size(), 3u);
+  EXPECT_EQ(scene.mesh.tangents[0], glm::vec4(0, 1, 0, -1));
+}
+
 TEST_F(SceneIoTest, RequiredExtensionsTheRendererLacksAreRefused) {
   Gltf gltf;
   gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2})}});
@@ -335,9 +439,13 @@ TEST_F(SceneIoTest, ErrorsNameTheFileAtFault) {
   expect_error([&] { tracer::load_gltf_scene(gltf.write(dir_, "inf")); }, file("inf.exr"),
                "not finite");
 
-  gltf.doc["materials"][0]["emissiveTexture"]["texCoord"] = 1;
+  gltf.doc["materials"][0]["emissiveTexture"]["texCoord"] = 2;
   const fs::path texcoord = gltf.write(dir_, "texcoord");
-  expect_error([&] { tracer::load_gltf_scene(texcoord); }, texcoord, "TEXCOORD_1");
+  expect_error([&] { tracer::load_gltf_scene(texcoord); }, texcoord, "TEXCOORD_2");
+  gltf.doc["materials"][0]["emissiveTexture"]["texCoord"] = 0;
+  gltf.doc["materials"][0]["alphaMode"] = "CUTOUT";
+  const fs::path alpha_mode = gltf.write(dir_, "alpha-mode");
+  expect_error([&] { tracer::load_gltf_scene(alpha_mode); }, alpha_mode, "unknown alphaMode 'CUTOUT'");
   gltf.doc.erase("materials");
   gltf.doc["meshes"][0]["primitives"][0].erase("material");
 

@@ -96,9 +96,9 @@ struct TexturedQuads {
   TexturedQuads() {
     Material a;
     a.emissive_factor = glm::vec3(1.0f);
-    a.emissive_texture = trs_test::add_random_texture(scene, 6, 5, 0.3, 31);
+    a.emissive_texture.texture = trs_test::add_random_texture(scene, 6, 5, 0.3, 31);
     Material b = a;
-    b.emissive_texture = trs_test::add_random_texture(scene, 7, 4, 0.8, 32);
+    b.emissive_texture.texture = trs_test::add_random_texture(scene, 7, 4, 0.8, 32);
     b.emissive_strength = 3.0f;
     const std::uint32_t ma = trs_test::add_material(scene, a), mb = trs_test::add_material(scene, b);
     trs_test::add_quad(scene, {0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, ma);

@@ -75,13 +75,13 @@ struct LightsFacingBothWays {
       const glm::vec3 a = c + glm::vec3(-s, -s, 0.0f), b = c + glm::vec3(s, -s, 0.0f), d = c + glm::vec3(0.0f, s, 0.0f);
       const auto base = std::uint32_t(m.positions.size());
       m.positions.insert(m.positions.end(), {a, down ? d : b, down ? b : d});
-      m.uvs.insert(m.uvs.end(), {glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)});
+      m.uvs[0].insert(m.uvs[0].end(), {glm::vec2(0.0f), glm::vec2(0.0f), glm::vec2(0.0f)});
       m.indices.insert(m.indices.end(), {base, base + 1, base + 2});
       m.materials.push_back(emitter);
     }
     const std::uint32_t floor = trs_test::add_material(scene, trs_test::matte(glm::vec3(0.7f), 0.8f));
     trs_test::add_quad(scene, {-6, -6, 0}, {6, -6, 0}, {6, 6, 0}, {-6, 6, 0}, floor);
-    geometry = std::make_unique<Geometry>(scene.mesh);
+    geometry = std::make_unique<Geometry>(scene);
     emitters = std::make_unique<Emitters>(scene, trs_test::kCpuSampler);
   }
 

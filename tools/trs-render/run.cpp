@@ -171,7 +171,7 @@ tracer::Scene load_scene(const RenderOptions& options) {
   if (options.diffuse_materials) {
     for (tracer::Material& m : scene.materials) {
       m.metallic = 0.0f;
-      m.metallic_roughness_texture = tracer::kNoTexture;
+      m.metallic_roughness_texture = {};
       m.specular = 0.0f;
     }
   }

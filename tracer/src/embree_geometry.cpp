@@ -4,11 +4,15 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <mutex>
 #include <stdexcept>
 #include <string>
 
 #include "tracer/geometry.h"
+
+#include "surface.h"
 
 namespace tracer {
 namespace {
@@ -42,6 +46,35 @@ RTCRay to_rtc(const Ray& ray, float max_distance) {
   return r;
 }
 
+/// A uniform float in [0, 1) from a ray and a triangle (splitmix64's finaliser over their bits),
+/// for stochastic transparency: independent of the path's random stream, so that a query needs
+/// no state and a ray met twice (as Embree may test a triangle twice) decides alike.
+float ray_hash(RTCRayN* ray, unsigned n, unsigned i, unsigned triangle) {
+  const float values[6] = {RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i),
+                           RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i)};
+  std::uint64_t h = triangle;
+  for (const float value : values) {
+    h = (h ^ std::bit_cast<std::uint32_t>(value)) + 0x9e3779b97f4a7c15ull;
+    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ull;
+    h = (h ^ (h >> 27)) * 0x94d049bb133111ebull;
+    h ^= h >> 31;
+  }
+  return float(h >> 40) * 0x1p-24f;
+}
+
+/// Embree's filter for both queries: drops a candidate hit where the surface is a hole, and on
+/// a blended surface with probability 1 - alpha.
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto& scene = *static_cast<const Scene*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
+    const float alpha = opacity(scene, triangle, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+    if (alpha >= 1.0f) continue;
+    if (alpha <= 0.0f || ray_hash(args->ray, args->N, i, triangle) >= alpha) args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
 struct Geometry::Kernel {
@@ -63,7 +96,7 @@ struct Geometry::Kernel {
   }
 };
 
-Geometry::Geometry(const Mesh& mesh) : kernel_(std::make_unique<Kernel>()) {
+Geometry::Geometry(const Scene& scene) : kernel_(std::make_unique<Kernel>()) {
   kernel_->device = rtcNewDevice(nullptr);
   if (!kernel_->device)
     throw std::runtime_error("Embree: could not create a device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
@@ -72,12 +105,13 @@ Geometry::Geometry(const Mesh& mesh) : kernel_(std::make_unique<Kernel>()) {
   rtcSetSceneBuildQuality(kernel_->scene, RTC_BUILD_QUALITY_HIGH);
   rtcSetSceneFlags(kernel_->scene, RTC_SCENE_FLAG_ROBUST);
 
-  if (mesh.triangle_count() > 0) add_triangles(mesh);
+  if (scene.mesh.triangle_count() > 0) add_triangles(scene);
   rtcCommitScene(kernel_->scene);
   kernel_->throw_on_error("building the scene");
 }
 
-void Geometry::add_triangles(const Mesh& mesh) {
+void Geometry::add_triangles(const Scene& scene) {
+  const Mesh& mesh = scene.mesh;
   RTCGeometry triangles = rtcNewGeometry(kernel_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   // Buffers of Embree's own: it reads 16 bytes at the last vertex, past the end of a
   // std::vector<glm::vec3>.
@@ -90,6 +124,11 @@ void Geometry::add_triangles(const Mesh& mesh) {
   kernel_->throw_on_error("allocating the triangle buffers");
   std::copy_n(&mesh.positions[0].x, 3 * mesh.positions.size(), vertices);
   std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
+  if (std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.alpha_tested(); })) {
+    rtcSetGeometryUserData(triangles, const_cast<Scene*>(&scene));  // read only, by alpha_filter
+    rtcSetGeometryIntersectFilterFunction(triangles, &alpha_filter);
+    rtcSetGeometryOccludedFilterFunction(triangles, &alpha_filter);
+  }
   rtcCommitGeometry(triangles);
   rtcAttachGeometry(kernel_->scene, triangles);
   rtcReleaseGeometry(triangles);

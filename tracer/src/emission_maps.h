@@ -1,8 +1,9 @@
 #pragma once
 // The emission of the scene's emissive materials as the light sampler's density maps: each
 // emissive material's radiance texel by texel (emissive factor times texture, decoded), its
-// luminance (the density), and its strength, as they are at an animation frame; moving to
-// another frame decodes only the images that change.
+// density (the luminance, times the share of the texel that the material's alpha leaves), and
+// its strength, as they are at an animation frame; moving to another frame decodes only the
+// images that change.
 
 #include <cstdint>
 #include <optional>
@@ -19,10 +20,19 @@ namespace tracer {
 /// One emissive material: radiance per texel (emissive factor times texture), its strength.
 struct EmissionMap {
   std::uint32_t material = 0;
+  /// Whose texture coordinates the lights carry to the light sampler: the emissive texture's;
+  /// for an emissive factor alone on a surface whose alpha comes from the base colour
+  /// texture, the base colour's, so that the map can follow the alpha; else TEXCOORD_0.
+  TextureRef mapping;
   std::uint32_t width = 1;
   std::uint32_t height = 1;
   std::vector<glm::vec3> radiance;
-  std::vector<float> luminance;
+  /// Per texel, the share of it where a ray stops on the surface (surface.h, opacity_at): mean
+  /// over a 4 x 4 grid of points in the texel. Empty where that is 1 throughout, and where the
+  /// alpha is read through other texture coordinates than the emission (then the density
+  /// ignores the alpha, and MIS alone keeps light samples on holes from biasing the image).
+  std::vector<float> coverage;
+  std::vector<float> luminance;  ///< the density: luminance of the radiance, times the coverage
   lightsampler::Addressing addressing = lightsampler::Addressing::wrap;
   float strength = 1.0f;
   bool double_sided = false;

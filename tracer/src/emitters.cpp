@@ -7,6 +7,7 @@
 #include <string>
 
 #include "emission_maps.h"
+#include "surface.h"
 
 namespace tracer {
 namespace {
@@ -76,11 +77,14 @@ void Emitters::add_light(std::uint32_t triangle, std::uint32_t map) {
   const Scene& scene = scene_;
   lights_of_scene_[triangle] = count();
   scene_triangles_.push_back(triangle);
+  // The light sampler reads the emission where the shader does: through its UV set and transform.
+  const TextureRef& mapping = (*maps_)[map].mapping;
+  const std::vector<glm::vec2>& uvs = scene.mesh.uvs[mapping.uv_set];
   glm::vec3 p[3];
   for (int k = 0; k < 3; ++k) {
     const std::uint32_t v = scene.mesh.indices[3 * triangle + k];
     p[k] = scene.mesh.positions[v];
-    const glm::vec2 uv = scene.mesh.uvs.empty() ? glm::vec2(0.0f) : scene.mesh.uvs[v];
+    const glm::vec2 uv = uvs.empty() ? glm::vec2(0.0f) : mapping.transform(uvs[v]);
     indices_.push_back(std::uint32_t(positions_.size() / 3));
     positions_.insert(positions_.end(), {p[k].x, p[k].y, p[k].z});
     uvs_.insert(uvs_.end(), {uv.x, uv.y});
@@ -121,6 +125,10 @@ glm::vec3 Emitters::emission(std::uint32_t light, float b1, float b2) const {
   const std::optional<lightsampler::Texel> texel = sampler_->texel(light, b1, b2);
   if (!texel) return glm::vec3(0.0f);
   return e.strength * e.radiance[std::size_t(texel->y) * e.width + texel->x];
+}
+
+float Emitters::opacity(std::uint32_t light, float b1, float b2) const {
+  return tracer::opacity(scene_, scene_triangles_[light], b1, b2);
 }
 
 float Emitters::density(std::uint32_t light, float b1, float b2) const {

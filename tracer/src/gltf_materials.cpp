@@ -17,8 +17,9 @@ namespace {
 
 using trs::gltf::Document;
 
-/// Colour is sRGB-encoded in integer images; data textures hold their values as they are.
-enum class Use { colour, data };
+/// Colour is sRGB-encoded in integer images; data textures hold their values as they are. A base
+/// colour whose alpha covers the surface keeps its image's alpha too.
+enum class Use { colour, colour_and_alpha, data };
 
 std::string label(const char* kind, std::size_t index, const std::string& name) {
   return std::string(kind) + " " + std::to_string(index) + (name.empty() ? "" : " '" + name + "'");
@@ -53,26 +54,28 @@ Texture read_texture(const Document& document, int index, Use use) {
 
   // Problems are the image file's where it has one, else the document's about this image.
   Texture texture;
+  const trs::Alpha alpha = use == Use::colour_and_alpha ? trs::Alpha::keep : trs::Alpha::drop;
   std::filesystem::path file = document.file();
   std::string prefix;
   trs::Image pixels;
   if (!image.uri.empty()) {
     file = document.resolve_uri(image.uri);
     texture.name = image.uri;
-    pixels = trs::read_image(file);
+    pixels = trs::read_image(file, alpha);
   } else {
     const std::string name = label("image", std::size_t(source.source), image.name);
     texture.name = image.name.empty() ? name : image.name;
     const std::string format = image.mimeType.substr(image.mimeType.find('/') + 1);
-    pixels = trs::read_image(image.image, format, file, name);
+    pixels = trs::read_image(image.image, format, file, name, alpha);
     prefix = name + ": ";
   }
   texture.width = pixels.width;
   texture.height = pixels.height;
-  texture.texels = linear_texels(std::move(pixels), use == Use::colour, file, prefix);
+  texture.alpha = std::move(pixels.alpha);
+  texture.texels = linear_texels(std::move(pixels), use != Use::data, file, prefix);
   // An image that plays a sequence: its frames are read as its poster is (colour).
   const tinygltf::Value& frames = image.extras.Get("frames");
-  if (use == Use::colour && frames.IsString()) {
+  if (use != Use::data && frames.IsString()) {
     texture.frames = read_image_sequence(document.file(), frames.Get<std::string>(), texture.width,
                                          texture.height, label("image", std::size_t(source.source), image.name));
   }
@@ -88,18 +91,64 @@ Texture read_texture(const Document& document, int index, Use use) {
   return texture;
 }
 
+/// A finite number of a JSON object, or `fallback` where it is absent.
+double number(const tinygltf::Value& object, const char* key, double fallback, const Document& document,
+              const std::string& what) {
+  const tinygltf::Value& value = object.Get(key);
+  if (!value.IsNumber()) return fallback;
+  const double number = value.GetNumberAsDouble();
+  if (!std::isfinite(number)) document.fail(what + ": " + key + " is not finite");
+  return number;
+}
+
+/// A pair of finite numbers of a JSON object, or `fallback` where it is absent.
+glm::vec2 pair(const tinygltf::Value& object, const char* key, glm::vec2 fallback, const Document& document,
+               const std::string& what) {
+  const tinygltf::Value& value = object.Get(key);
+  if (!value.IsArray()) return fallback;
+  if (value.ArrayLen() != 2 || !value.Get(0).IsNumber() || !value.Get(1).IsNumber())
+    document.fail(what + ": " + key + " must be two numbers");
+  const glm::dvec2 pair(value.Get(0).GetNumberAsDouble(), value.Get(1).GetNumberAsDouble());
+  if (!std::isfinite(pair.x) || !std::isfinite(pair.y)) document.fail(what + ": " + key + " is not finite");
+  return glm::vec2(pair);
+}
+
+/// A texture reference's UV set and transform: its texCoord, which KHR_texture_transform may
+/// override, and that extension's offset, rotation (counter-clockwise, radians) and scale,
+/// applied as the ratified extension defines: scale, then rotate, then offset.
+void read_mapping(int tex_coord, const tinygltf::ExtensionMap& extensions, TextureRef& ref,
+                  const Document& document, const std::string& what) {
+  const auto transform = extensions.find("KHR_texture_transform");
+  if (transform != extensions.end()) {
+    const tinygltf::Value& t = transform->second;
+    const std::string where = what + " KHR_texture_transform";
+    tex_coord = int(number(t, "texCoord", tex_coord, document, where));
+    const glm::vec2 scale = pair(t, "scale", glm::vec2(1.0f), document, where);
+    const auto rotation = float(number(t, "rotation", 0.0, document, where));
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    // Columns: u' = c sx u + s sy v, v' = -s sx u + c sy v.
+    ref.transform.linear = glm::mat2(c * scale.x, -s * scale.x, s * scale.y, c * scale.y);
+    ref.transform.offset = pair(t, "offset", glm::vec2(0.0f), document, where);
+  }
+  if (tex_coord < 0 || std::size_t(tex_coord) >= kUvSets) {
+    document.fail(what + " uses TEXCOORD_" + std::to_string(tex_coord) +
+                  "; only TEXCOORD_0 and TEXCOORD_1 are supported");
+  }
+  ref.uv_set = std::uint32_t(tex_coord);
+}
+
 /// Scene textures by glTF texture and use, each decoded once however many materials share it.
 class Textures {
  public:
   Textures(const Document& document, std::vector<Texture>& textures, double& decode_seconds)
       : document_(document), textures_(textures), decode_seconds_(decode_seconds) {}
 
-  std::int32_t get(const tinygltf::TextureInfo& info, Use use, const std::string& what) {
-    if (info.index < 0) return kNoTexture;
-    if (info.texCoord != 0) {
-      document_.fail(what + " uses TEXCOORD_" + std::to_string(info.texCoord) +
-                     "; only TEXCOORD_0 is supported");
-    }
+  /// A material's texture reference (tinygltf's TextureInfo or NormalTextureInfo).
+  template <class Info>
+  TextureRef get(const Info& info, Use use, const std::string& what) {
+    TextureRef ref;
+    if (info.index < 0) return ref;
+    read_mapping(info.texCoord, info.extensions, ref, document_, what);
     const auto [entry, added] = loaded_.try_emplace({info.index, use}, kNoTexture);
     if (added) {
       const auto start = std::chrono::steady_clock::now();
@@ -107,7 +156,8 @@ class Textures {
       decode_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       entry->second = static_cast<std::int32_t>(textures_.size() - 1);
     }
-    return entry->second;
+    ref.texture = entry->second;
+    return ref;
   }
 
  private:
@@ -121,6 +171,21 @@ glm::vec3 rgb(const std::vector<double>& factor, const Document& document,
               const std::string& what) {
   if (factor.size() < 3) document.fail(what + " has fewer than 3 components");
   return {float(factor[0]), float(factor[1]), float(factor[2])};
+}
+
+/// glTF's alphaMode and alphaCutoff.
+void read_alpha(const tinygltf::Material& source, Material& material, const Document& document,
+                const std::string& what) {
+  if (source.alphaMode == "MASK") {
+    material.alpha_mode = AlphaMode::mask;
+  } else if (source.alphaMode == "BLEND") {
+    material.alpha_mode = AlphaMode::blend;
+  } else if (source.alphaMode != "OPAQUE") {
+    document.fail(what + ": unknown alphaMode '" + source.alphaMode + "'");
+  }
+  material.alpha_cutoff = float(source.alphaCutoff);
+  if (!(material.alpha_cutoff >= 0.0f) || !std::isfinite(material.alpha_cutoff))
+    document.fail(what + ": alphaCutoff must be finite and non-negative");
 }
 
 float emissive_strength(const tinygltf::Material& material, const Document& document,
@@ -196,12 +261,17 @@ void read_materials(const Document& document, Scene& scene) {
     Material material;
     material.name = source.name;
     material.base_color = rgb(pbr.baseColorFactor, document, what + " baseColorFactor");
+    if (pbr.baseColorFactor.size() == 4) material.alpha = float(pbr.baseColorFactor[3]);
+    read_alpha(source, material, document, what);
     material.base_color_texture =
-        textures.get(pbr.baseColorTexture, Use::colour, what + " baseColorTexture");
+        textures.get(pbr.baseColorTexture, material.alpha_tested() ? Use::colour_and_alpha : Use::colour,
+                     what + " baseColorTexture");
     material.metallic = float(pbr.metallicFactor);
     material.roughness = float(pbr.roughnessFactor);
     material.metallic_roughness_texture =
         textures.get(pbr.metallicRoughnessTexture, Use::data, what + " metallicRoughnessTexture");
+    material.normal_texture = textures.get(source.normalTexture, Use::data, what + " normalTexture");
+    material.normal_scale = float(source.normalTexture.scale);
     material.emissive_factor = rgb(source.emissiveFactor, document, what + " emissiveFactor");
     material.emissive_texture =
         textures.get(source.emissiveTexture, Use::colour, what + " emissiveTexture");

@@ -1,5 +1,6 @@
 #include "tracer/gltf_scene.h"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_inverse.hpp>
@@ -23,9 +24,19 @@ using trs::gltf::Document;
 struct Vertices {
   std::vector<glm::vec3> positions;
   std::optional<std::vector<glm::vec3>> normals;
-  std::vector<glm::vec2> uvs;
+  std::array<std::vector<glm::vec2>, kUvSets> uvs;  ///< (0, 0) where the primitive has no such set
+  std::optional<std::vector<glm::vec4>> tangents;
   std::vector<std::uint32_t> corners;  ///< 3 per triangle, into the vectors above
 };
+
+/// Which attributes some primitive of the scene has: the mesh then holds them for every vertex.
+struct Attributes {
+  bool normals = false;
+  bool tangents = false;
+  std::array<bool, kUvSets> uv_sets{};
+};
+
+std::string uv_set_name(std::size_t set) { return "TEXCOORD_" + std::to_string(set); }
 
 template <class Vector>
 void check_finite(const std::vector<Vector>& values, const Document& document,
@@ -44,11 +55,14 @@ Vertices world_vertices(const Document& document, const tinygltf::Primitive& pri
   v.positions = document.positions(primitive, what);
   const std::size_t count = v.positions.size();
   v.normals = document.vec3_attribute(primitive, "NORMAL", count, what);
-  v.uvs = document.vec2_attribute(primitive, "TEXCOORD_0", count, what)
-              .value_or(std::vector<glm::vec2>(count, glm::vec2(0.0f)));
+  for (std::size_t set = 0; set < kUvSets; ++set) {
+    v.uvs[set] = document.vec2_attribute(primitive, uv_set_name(set), count, what)
+                     .value_or(std::vector<glm::vec2>(count, glm::vec2(0.0f)));
+    check_finite(v.uvs[set], document, what + " " + uv_set_name(set));
+  }
+  v.tangents = document.vec4_attribute(primitive, "TANGENT", count, what);
   v.corners = document.triangles(primitive, count, what);
   check_finite(v.positions, document, what + " POSITION");
-  check_finite(v.uvs, document, what + " TEXCOORD_0");
 
   for (glm::vec3& p : v.positions) p = glm::vec3(world * glm::dvec4(p, 1.0));
   const glm::dmat3 linear(world);
@@ -60,6 +74,17 @@ Vertices world_vertices(const Document& document, const tinygltf::Primitive& pri
       if (glm::length(normal) == 0.0)
         document.fail(what + " NORMAL " + std::to_string(i) + " is zero");
       (*v.normals)[i] = glm::vec3(glm::normalize(normal));
+    }
+  }
+  if (v.tangents) {
+    check_finite(*v.tangents, document, what + " TANGENT");
+    // A mirroring transform turns the bitangent, cross(normal, tangent) w, the other way.
+    const float handedness = glm::determinant(linear) < 0.0 ? -1.0f : 1.0f;
+    for (glm::vec4& t : *v.tangents) {
+      const glm::dvec3 tangent = linear * glm::dvec3(t);
+      // A zero tangent (a degenerate UV mapping) falls back to the UVs' own, as an absent one.
+      t = glm::length(tangent) > 0.0 ? glm::vec4(glm::vec3(glm::normalize(tangent)), handedness * (t.w < 0.0f ? -1.0f : 1.0f))
+                                     : glm::vec4(0.0f);
     }
   }
   if (glm::determinant(linear) < 0.0) {
@@ -74,6 +99,7 @@ Vertices world_vertices(const Document& document, const tinygltf::Primitive& pri
 Vertices with_face_normals(const Vertices& shared) {
   Vertices flat;
   flat.normals.emplace();
+  if (shared.tangents) flat.tangents.emplace();
   for (std::size_t t = 0; t < shared.corners.size(); t += 3) {
     const glm::vec3 a = shared.positions[shared.corners[t]];
     const glm::vec3 b = shared.positions[shared.corners[t + 1]];
@@ -86,19 +112,35 @@ Vertices with_face_normals(const Vertices& shared) {
       const std::uint32_t corner = shared.corners[t + k];
       flat.corners.push_back(static_cast<std::uint32_t>(flat.positions.size()));
       flat.positions.push_back(shared.positions[corner]);
-      flat.uvs.push_back(shared.uvs[corner]);
+      for (std::size_t set = 0; set < kUvSets; ++set) flat.uvs[set].push_back(shared.uvs[set][corner]);
+      if (shared.tangents) flat.tangents->push_back((*shared.tangents)[corner]);
       flat.normals->push_back(normal);
     }
   }
   return flat;
 }
 
+/// Appends `values`, or as many `fallback`s, to a mesh attribute that some primitive has.
+template <class T>
+void append(std::vector<T>& attribute, bool scene_has, const std::optional<std::vector<T>>& values,
+            std::size_t count, T fallback) {
+  if (!scene_has) return;
+  if (values)
+    attribute.insert(attribute.end(), values->begin(), values->end());
+  else
+    attribute.insert(attribute.end(), count, fallback);
+}
+
 void read_geometry(const Document& document, Scene& scene) {
-  bool any_normals = false;
+  Attributes any;
   document.for_each_triangle_primitive(
       [&](const tinygltf::Primitive& primitive, const glm::dmat4&, const std::string&) {
-        any_normals = any_normals || primitive.attributes.contains("NORMAL");
+        any.normals = any.normals || primitive.attributes.contains("NORMAL");
+        any.tangents = any.tangents || primitive.attributes.contains("TANGENT");
+        for (std::size_t set = 0; set < kUvSets; ++set)
+          any.uv_sets[set] = any.uv_sets[set] || primitive.attributes.contains(uv_set_name(set));
       });
+  any.uv_sets[0] = true;  // TEXCOORD_0 is always there, (0, 0) where a primitive has none
   const std::size_t file_materials = document.model().materials.size();
   std::optional<std::uint32_t> default_material;
   Mesh& mesh = scene.mesh;
@@ -118,12 +160,14 @@ void read_geometry(const Document& document, Scene& scene) {
             primitive.material >= 0 ? std::uint32_t(primitive.material) : *default_material;
 
         Vertices v = world_vertices(document, primitive, world, what);
-        if (any_normals && !v.normals) v = with_face_normals(v);
+        if (any.normals && !v.normals) v = with_face_normals(v);
         const std::uint32_t base = document.vertex_base(mesh.positions.size(), v.positions.size());
+        const std::size_t count = v.positions.size();
         mesh.positions.insert(mesh.positions.end(), v.positions.begin(), v.positions.end());
-        if (v.normals)
-          mesh.normals.insert(mesh.normals.end(), v.normals->begin(), v.normals->end());
-        mesh.uvs.insert(mesh.uvs.end(), v.uvs.begin(), v.uvs.end());
+        append(mesh.normals, any.normals, v.normals, count, glm::vec3(0.0f));
+        append(mesh.tangents, any.tangents, v.tangents, count, glm::vec4(0.0f));
+        for (std::size_t set = 0; set < kUvSets; ++set)
+          append(mesh.uvs[set], any.uv_sets[set], std::optional(v.uvs[set]), count, glm::vec2(0.0f));
         for (const std::uint32_t corner : v.corners) mesh.indices.push_back(base + corner);
         mesh.materials.insert(mesh.materials.end(), v.corners.size() / 3, material);
       });
@@ -165,7 +209,7 @@ Scene load_gltf_scene(const std::filesystem::path& file) {
   // Extensions the renderer reads; KHR_materials_variants leaves the default materials, which
   // are what it renders.
   document.require_only({"KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_animation_pointer",
-                         "KHR_materials_variants"});
+                         "KHR_materials_variants", "KHR_texture_transform"});
   Scene scene;
   scene.file = file;
   read_materials(document, scene);

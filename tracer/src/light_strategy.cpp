@@ -51,9 +51,9 @@ std::unique_ptr<LightStrategy> make_light_strategy(Emitters& emitters, const Str
 
 LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,
                         float pdf, float mis_pdf) {
-  return {emitters.position(light, b1, b2), pdf,       emitters.normal(light),
-          mis_pdf,                          emitters.emission(light, b1, b2), light,
-          b1,                               b2,        emitters.two_sided(light)};
+  const glm::vec3 radiance = emitters.emission(light, b1, b2) * emitters.opacity(light, b1, b2);
+  return {emitters.position(light, b1, b2), pdf, emitters.normal(light), mis_pdf, radiance, light,
+          b1, b2, emitters.two_sided(light)};
 }
 
 const char* to_string(StrategyKind kind) {

@@ -138,7 +138,7 @@ struct Renderer::State {
       : scene(s),
         settings(r),
         frame(f),
-        geometry(s.mesh),
+        geometry(s),
         emitters(s, sampler_options(r), f, animation_seconds(f, r.fps)),
         choice(choose(lit(emitters, s), r)),
         strategy(make_light_strategy(emitters, choice.options)),

@@ -35,8 +35,8 @@ bool Scene::animated() const {
   return std::any_of(materials.begin(), materials.end(),
                      [&](const Material& m) {
                        return m.emissive() && (m.emission_animated() ||
-                                               (m.emissive_texture != kNoTexture &&
-                                                textures[std::size_t(m.emissive_texture)].frames));
+                                               (m.emissive_texture.present() &&
+                                                textures[std::size_t(m.emissive_texture.texture)].frames));
                      });
 }
 

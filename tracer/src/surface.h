@@ -1,11 +1,12 @@
 #pragma once
-// What the integrator needs at a ray hit: the point, its normals and UV, and its material with
-// textures applied.
+// What the integrator needs at a ray hit: the point, its normals and UVs, its material with
+// textures applied, and how opaque it is there.
 
 #include <cstdint>
 
 #include <glm/glm.hpp>
 
+#include "texture_lookup.h"
 #include "tracer/bsdf.h"
 #include "tracer/geometry.h"
 #include "tracer/scene.h"
@@ -15,14 +16,26 @@ namespace tracer {
 struct SurfacePoint {
   glm::vec3 position;
   glm::vec3 geometric_normal;  ///< unit, front face by counter-clockwise winding
-  glm::vec3 shading_normal;    ///< unit, interpolated, on the geometric normal's side
-  glm::vec2 uv;
+  /// Unit: interpolated, bent by the material's normal map, and turned to the geometric
+  /// normal's side (pbrt-v4's FaceForward).
+  glm::vec3 shading_normal;
+  SurfaceUvs uv;
   std::uint32_t material;
 };
 
 SurfacePoint surface_point(const Scene& scene, const Hit& hit);
 
-/// The material's parameters at `uv`, textures applied (glTF: factor times texture).
-SurfaceParams surface_params(const Scene& scene, const Material& material, glm::vec2 uv);
+/// The UV sets of a point (b1, b2) of a scene triangle.
+SurfaceUvs surface_uvs(const Mesh& mesh, std::uint32_t triangle, float b1, float b2);
+
+/// The material's parameters at a point, textures applied (glTF: factor times texture).
+SurfaceParams surface_params(const Scene& scene, const Material& material, const SurfaceUvs& uv);
+
+/// The probability that a ray stops at a point of the material (its alpha mode: 1 where opaque,
+/// 0 or 1 where masked, alpha where blended), the base colour texture read at `uv`, its own
+/// (transformed) coordinates.
+float opacity_at(const Scene& scene, const Material& material, glm::vec2 uv);
+/// The same at a point (b1, b2) of a scene triangle.
+float opacity(const Scene& scene, std::uint32_t triangle, float b1, float b2);
 
 }  // namespace tracer

@@ -6,8 +6,8 @@
 // Each emissive material becomes one density map (emission_maps.h): luminance (Rec. 709) of
 // emissive factor times emissive texture, with the emissive strength as the map's scale.
 // Emitted radiance is read at the texel the sampler names (Sampler::texel), nearest-texel, so
-// that wherever radiance is non-zero the density is too, and a light's pdf and its radiance
-// always come from one texel.
+// that wherever radiance is non-zero the density is too (unless alpha covers the texel
+// wholly), and a light's pdf and its radiance always come from one texel.
 
 #include <array>
 #include <cstdint>
@@ -70,8 +70,13 @@ class Emitters {
 
   /// Radiance leaving a point of a light towards unit direction `w` (linear Rec. 709).
   glm::vec3 radiance(std::uint32_t light, float b1, float b2, glm::vec3 w) const;
-  /// Radiance leaving a point of a light towards its front, whatever the direction.
+  /// Radiance leaving a point of a light towards its front, whatever the direction, where a
+  /// ray stops on it.
   glm::vec3 emission(std::uint32_t light, float b1, float b2) const;
+  /// The probability that a ray stops at a point of a light (its material's alpha: 0 on a hole,
+  /// alpha where blended, else 1). What a light sample brings is its emission times this, the
+  /// emission a ray meets on average.
+  float opacity(std::uint32_t light, float b1, float b2) const;
   /// Whether a light emits from its back face too.
   bool two_sided(std::uint32_t light) const;
   /// Density of the point, luminance of its texel's radiance times strength, as sampled.

@@ -22,9 +22,12 @@ struct Hit {
 
 class Geometry {
  public:
-  /// Builds the acceleration structure over a copy of `mesh`'s triangles. Throws
-  /// std::runtime_error if the kernel reports an error.
-  explicit Geometry(const Mesh& mesh);
+  /// Builds the acceleration structure over a copy of the scene's triangles. Where a material's
+  /// alpha cuts or thins its surface (Material::alpha_mode), every query passes through the
+  /// holes, and through a blended surface with probability 1 - alpha, decided by a hash of the
+  /// ray and the triangle: the same ray always meets the same surfaces. The scene must outlive
+  /// the geometry. Throws std::runtime_error if the kernel reports an error.
+  explicit Geometry(const Scene& scene);
   ~Geometry();
   Geometry(const Geometry&) = delete;
   Geometry& operator=(const Geometry&) = delete;
@@ -39,7 +42,7 @@ class Geometry {
 
  private:
   struct Kernel;
-  void add_triangles(const Mesh& mesh);
+  void add_triangles(const Scene& scene);
   std::unique_ptr<Kernel> kernel_;
 };
 

@@ -3,6 +3,7 @@
 // (linear, decoded at load time), its punctual lights, and a camera. Loaders fill it; nothing here knows glTF.
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -40,6 +41,9 @@ struct Texture {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   std::vector<glm::vec3> texels;  ///< width * height
+  /// Base colour textures whose image has an alpha channel: width * height values in [0, 1].
+  /// Empty otherwise (alpha 1).
+  std::vector<float> alpha;
   Wrap wrap_s = Wrap::repeat;
   Wrap wrap_t = Wrap::repeat;
   /// glTF's magnification filter asked for nearest. Emission is always read nearest (texel for
@@ -61,21 +65,58 @@ struct Keyframes {
 };
 
 inline constexpr std::int32_t kNoTexture = -1;
+/// TEXCOORD_0 and TEXCOORD_1: the UV sets a texture can read.
+inline constexpr std::size_t kUvSets = 2;
 
-/// glTF's metallic-roughness material. Texture channels as glTF defines them: base colour RGB;
-/// roughness in G, metallic in B of the metallic-roughness texture.
+/// An affine map of texture coordinates (KHR_texture_transform): uv' = linear uv + offset.
+struct UvTransform {
+  glm::mat2 linear{1.0f};
+  glm::vec2 offset{0.0f};
+
+  glm::vec2 operator()(glm::vec2 uv) const { return linear * uv + offset; }
+  bool operator==(const UvTransform&) const = default;
+};
+
+/// Where a material reads a texture: which one, through which UV set and transform.
+struct TextureRef {
+  std::int32_t texture = kNoTexture;
+  std::uint32_t uv_set = 0;  ///< below kUvSets
+  UvTransform transform;
+
+  bool present() const { return texture != kNoTexture; }
+  /// Whether two references put a surface point at the same texture coordinates.
+  bool same_mapping(const TextureRef& other) const {
+    return uv_set == other.uv_set && transform == other.transform;
+  }
+};
+
+/// How a material's alpha (base colour factor times texture) covers its surface (glTF alphaMode).
+enum class AlphaMode : std::uint8_t {
+  opaque,  ///< alpha is ignored
+  mask,    ///< the surface is there where alpha >= alpha_cutoff, a hole elsewhere
+  blend,   ///< a ray stops with probability alpha (stochastic transparency, as Cycles and pbrt-v4)
+};
+
+/// glTF's metallic-roughness material. Texture channels as glTF defines them: base colour RGB
+/// and alpha; roughness in G, metallic in B of the metallic-roughness texture; the tangent-space
+/// normal in RGB of the normal texture.
 struct Material {
   std::string name;
   glm::vec3 base_color{1.0f};
-  std::int32_t base_color_texture = kNoTexture;
+  float alpha = 1.0f;  ///< the base colour factor's alpha
+  TextureRef base_color_texture;
+  AlphaMode alpha_mode = AlphaMode::opaque;
+  float alpha_cutoff = 0.5f;
   float metallic = 1.0f;
   float roughness = 1.0f;
-  std::int32_t metallic_roughness_texture = kNoTexture;
+  TextureRef metallic_roughness_texture;
+  TextureRef normal_texture;
+  float normal_scale = 1.0f;  ///< scales the tangent-space normal's X and Y
   float specular = 1.0f;  ///< the dielectric specular layer's weight (SurfaceParams::specular)
   /// Emitted radiance = emissive_factor * emissive texture * emissive_strength
   /// (KHR_materials_emissive_strength), in linear Rec.709.
   glm::vec3 emissive_factor{0.0f};
-  std::int32_t emissive_texture = kNoTexture;
+  TextureRef emissive_texture;
   float emissive_strength = 1.0f;
   /// Single-sided surfaces emit from their front face only (counter-clockwise winding).
   bool double_sided = false;
@@ -96,13 +137,21 @@ struct Material {
   bool emissive() const;
   /// Whether its emission changes over time (its texture's sequence aside).
   bool emission_animated() const { return emissive_factor_keys || emissive_strength_keys; }
+  /// Whether alpha can cut or thin the surface anywhere.
+  bool alpha_tested() const { return alpha_mode != AlphaMode::opaque; }
 };
 
 /// Every triangle of the scene in world space. Vertices are not shared between primitives.
 struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  ///< per vertex, unit; empty: shade with geometric normals
-  std::vector<glm::vec2> uvs;      ///< TEXCOORD_0 per vertex; (0, 0) where a primitive has none
+  /// TEXCOORD_0 and TEXCOORD_1 per vertex; (0, 0) where a primitive has none. A set no
+  /// primitive has is empty.
+  std::array<std::vector<glm::vec2>, kUvSets> uvs;
+  /// Per vertex where the file gives them (glTF's TANGENT: unit xyz in world space, w the
+  /// bitangent's sign); empty where no normal-mapped primitive has them: normal maps then take
+  /// their tangents from the UVs (surface.h).
+  std::vector<glm::vec4> tangents;
   std::vector<std::uint32_t> indices;    ///< 3 per triangle
   std::vector<std::uint32_t> materials;  ///< material index per triangle
 
