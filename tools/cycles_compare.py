@@ -9,11 +9,26 @@ size, the same path depth (Cycles' bounces are trs-render's --max-depth less one
 light, no clamping, no light threshold, punctual lights as points (radius and sun angle 0) and
 Blender's "Standard" view, written as linear EXR. `--diffuse` makes every material Lambertian
 in both: trs-render's --diffuse-materials, and in Cycles each imported Principled BSDF replaced
-by a Diffuse BSDF of its base colour beside its emission. What is compared is then the lighting,
-not the two renderers' BSDFs (Cycles' Principled diffuse brightens at grazing angles, and
-trs-render's darkens under its dielectric specular layer). The lit pixels are those where no camera sample of
-trs-render's render sees an emitter (its --emitter-mask is 0): where one does, both show the
-emitter itself.
+by a Diffuse BSDF of its base colour beside its emission, under the importer's coverage and
+normal map: the node that drives the Principled BSDF's Alpha mixes the two with a Transparent
+BSDF (as the Principled BSDF itself does in Cycles), and its Normal Map node feeds the Diffuse
+BSDF's Normal. What is compared is then the lighting, not the two renderers' BSDFs (Cycles'
+Principled diffuse brightens at grazing angles, and trs-render's darkens under its dielectric
+specular layer). The lit pixels are those where no camera sample of trs-render's render sees an
+emitter (its --emitter-mask is 0): where one does, both show the emitter itself.
+
+Coverage (glTF's alphaMode) reaches Cycles through the shader alone: Cycles blends by the
+Alpha input and ignores the material's blend mode, which only Eevee reads. BLEND is therefore
+rendered as the file means it. For MASK, Blender 3.4's importer leaves the cut to that blend
+mode ("Alpha Clip" at alphaCutoff), so Cycles would blend a masked texture's fractional alpha:
+the script cuts it in the shader instead, Alpha = 1 - (alpha < cutoff), glTF's rule, in front
+of whatever the importer wired into the Alpha input. Transparent hits count as Cycles'
+transparent bounces (up to 64), apart from the path depth. Normal maps reach Cycles through
+the importer's Normal Map node, with MikkTSpace tangents of the map's UV set (the file's TANGENT
+is not read). Cycles bends a shading normal whose mirror direction of the view would fall below
+the surface back towards the viewer, so steep normal maps seen at grazing angles (the far
+flanks of scenes/materials/normal-wall's cobbles) differ from a renderer that shades them as
+mapped.
 
   tools/cycles_compare.py SCENE.gltf --render build/bin/trs-render --out DIR [--diffuse]
       [--width 320 --height 180 --spp 256 --cycles-spp 256 --max-depth 3] [--csv FILE]
@@ -55,29 +70,67 @@ def input_into(source, target, tree):
         target.default_value = source.default_value
 
 
-def diffuse_surface(material):
-    # The importer's Principled BSDF replaced by a Lambertian Diffuse BSDF of its base colour,
-    # plus its emission.
+def nodes_of(material):
+    # The importer's Principled BSDF and Material Output, or None where it made other nodes.
+    if not material.use_nodes:
+        return None, None
     tree = material.node_tree
     principled = next((n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
     output = next((n for n in tree.nodes if n.type == "OUTPUT_MATERIAL"), None)
-    if principled is None or output is None:
+    return (principled, output) if principled and output else (None, None)
+
+
+def cut_mask(material):
+    # glTF's MASK in the shader: the importer's alpha, cut at the material's alphaCutoff (its
+    # Eevee alpha_threshold) as glTF cuts it, opaque where alpha >= cutoff.
+    principled, _ = nodes_of(material)
+    if principled is None or getattr(material, "blend_method", None) != "CLIP":
         return
+    tree = material.node_tree
+    below = tree.nodes.new("ShaderNodeMath")
+    below.operation = "LESS_THAN"
+    input_into(principled.inputs["Alpha"], below.inputs[0], tree)
+    below.inputs[1].default_value = material.alpha_threshold
+    kept = tree.nodes.new("ShaderNodeMath")
+    kept.operation = "SUBTRACT"
+    kept.inputs[0].default_value = 1.0
+    tree.links.new(below.outputs[0], kept.inputs[1])
+    tree.links.new(kept.outputs[0], principled.inputs["Alpha"])
+
+
+def diffuse_surface(material):
+    # The importer's Principled BSDF replaced by a Lambertian Diffuse BSDF of its base colour and
+    # normal, plus its emission, the two covered by its alpha as the Principled BSDF covers them.
+    principled, output = nodes_of(material)
+    if principled is None:
+        return
+    tree = material.node_tree
     diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
     input_into(principled.inputs["Base Color"], diffuse.inputs["Color"], tree)
+    if principled.inputs["Normal"].is_linked:  # the Normal Map node; unlinked: the shading normal
+        input_into(principled.inputs["Normal"], diffuse.inputs["Normal"], tree)
     emission = tree.nodes.new("ShaderNodeEmission")
     input_into(principled.inputs["Emission"], emission.inputs["Color"], tree)
     input_into(principled.inputs["Emission Strength"], emission.inputs["Strength"], tree)
     both = tree.nodes.new("ShaderNodeAddShader")
     tree.links.new(diffuse.outputs["BSDF"], both.inputs[0])
     tree.links.new(emission.outputs["Emission"], both.inputs[1])
-    tree.links.new(both.outputs["Shader"], output.inputs["Surface"])
+    surface = both.outputs["Shader"]
+    alpha = principled.inputs["Alpha"]
+    if alpha.is_linked or alpha.default_value < 1.0:
+        covered = tree.nodes.new("ShaderNodeMixShader")
+        input_into(alpha, covered.inputs["Fac"], tree)
+        transparent = tree.nodes.new("ShaderNodeBsdfTransparent")
+        tree.links.new(transparent.outputs["BSDF"], covered.inputs[1])
+        tree.links.new(surface, covered.inputs[2])
+        surface = covered.outputs["Shader"]
+    tree.links.new(surface, output.inputs["Surface"])
 
 
-if diffuse == "1":
-    for material in bpy.data.materials:
-        if material.use_nodes:
-            diffuse_surface(material)
+for material in bpy.data.materials:
+    cut_mask(material)
+    if diffuse == "1":
+        diffuse_surface(material)
 cameras = [o for o in scene.objects if o.type == "CAMERA"]
 if not cameras:
     sys.exit("cycles_compare: the file has no camera")
@@ -107,6 +160,7 @@ cycles.use_denoising = False
 cycles.max_bounces = int(bounces)
 for prop in ("diffuse_bounces", "glossy_bounces", "transmission_bounces", "volume_bounces"):
     setattr(cycles, prop, int(bounces))
+cycles.transparent_max_bounces = 64
 cycles.sample_clamp_direct = 0.0
 cycles.sample_clamp_indirect = 0.0
 cycles.light_sampling_threshold = 0.0

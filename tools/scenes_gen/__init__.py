@@ -1,17 +1,26 @@
 """The scenes that tools/make_scenes.py writes: one module per scene, built from the glTF writer
-(gltf), meshes (mesh), textures (texture), neon lettering (neon) and vector maths (vec).
+(gltf), meshes (mesh), textures (texture), normal maps (relief), neon lettering (neon) and vector
+maths (vec).
 
-SCENES maps each scene's folder name to its builder, which returns (Gltf, title, samples per pixel).
+SCENES maps each scene's folder name to its builder, which returns (Gltf, title, samples per pixel);
+MATERIAL_SCENES does the same for scenes/materials, which tools/make_material_scenes.py writes:
+one material feature each (coverage, normal maps, texture transforms and wrap modes).
 """
+from .atlas_sign import atlas_sign
+from .blend_glass import blend_glass
 from .courtyard import courtyard
 from .gradient_screen import gradient_screen
 from .lantern import lantern
 from .mosaic import mosaic
 from .neon_sign import neon_sign
 from .night_street import night_street
+from .normal_wall import normal_wall
+from .stained_lamp import stained_lamp
 from .tile_emitter import tile_emitter
 from .video_wall import video_wall
 
 SCENES = {"neon-sign": neon_sign, "gradient-screen": gradient_screen, "mosaic": mosaic,
           "tile-emitter": tile_emitter, "lantern": lantern, "night-street": night_street,
           "video-wall": video_wall, "courtyard": courtyard}
+MATERIAL_SCENES = {"stained-lamp": stained_lamp, "blend-glass": blend_glass, "normal-wall": normal_wall,
+                   "atlas-sign": atlas_sign}

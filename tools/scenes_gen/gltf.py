@@ -6,9 +6,10 @@ import struct
 from .vec import add, cross, dot, f32, mul, normalize, quaternion, short_f32, sub
 
 GENERATOR = "tools/make_scenes.py"  # the asset's "generator": the command that writes the scenes
+MATERIALS_GENERATOR = "tools/make_material_scenes.py"  # the same for scenes/materials
 FLOAT, UNSIGNED_INT = 5126, 5125  # glTF component types
 ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
-NEAREST, CLAMP_TO_EDGE = 9728, 33071
+NEAREST, CLAMP_TO_EDGE, REPEAT, MIRRORED_REPEAT = 9728, 33071, 10497, 33648
 TRIANGLES = 4
 WIDTH, HEIGHT = 480, 270  # every scene's default image size
 
@@ -16,14 +17,14 @@ WIDTH, HEIGHT = 480, 270  # every scene's default image size
 class Gltf:
     """Accumulates one glTF document, its single binary buffer and its textures."""
 
-    def __init__(self, name):
+    def __init__(self, name, generator=GENERATOR, extensions=("KHR_materials_emissive_strength",)):
         self.name = name
         self.blob = bytearray()
         self.textures = []
         self.facing_away = set()
         self.doc = {
-            "asset": {"version": "2.0", "generator": GENERATOR},
-            "extensionsUsed": ["KHR_materials_emissive_strength"],
+            "asset": {"version": "2.0", "generator": generator},
+            "extensionsUsed": list(extensions),
             "scene": 0, "scenes": [{"name": name, "nodes": []}], "nodes": [], "cameras": [],
             "meshes": [], "materials": [], "textures": [], "images": [], "samplers": [],
             "accessors": [], "bufferViews": [], "buffers": [],
@@ -46,7 +47,7 @@ class Gltf:
         return self._append("bufferViews", view)
 
     def _vectors(self, values, bounds=False):
-        """A float VEC2 or VEC3 accessor; POSITION (bounds=True) must state its min and max."""
+        """A float VEC2, VEC3 or VEC4 accessor; POSITION (bounds=True) must state its min and max."""
         flat = [c for v in values for c in v]
         data = struct.pack(f"<{len(flat)}f", *flat)
         accessor = {"bufferView": self._view(data, ARRAY_BUFFER), "componentType": FLOAT,
@@ -90,19 +91,72 @@ class Gltf:
                                      "metallicFactor": metallic, "roughnessFactor": roughness},
             "doubleSided": double_sided})
 
-    def _texture(self, texture):
-        """The glTF texture of `texture`, added with its image the first time it is used."""
-        if not self.doc["samplers"]:  # texel for texel, as the light sampler reads the map
-            self.doc["samplers"].append({"magFilter": NEAREST, "minFilter": NEAREST,
-                                         "wrapS": CLAMP_TO_EDGE, "wrapT": CLAMP_TO_EDGE})
+    def use_extension(self, extension):
+        """Lists `extension` in extensionsUsed (once). Never in extensionsRequired: a viewer
+        without it still shows the scene, if not quite as written."""
+        if extension not in self.doc["extensionsUsed"]:
+            self.doc["extensionsUsed"].append(extension)
+
+    def _sampler(self, wrap):
+        """The sampler of `wrap` on both axes, texel for texel (nearest), as the light sampler
+        reads an emission map; the renderer's light sampler takes one wrap mode for both axes."""
+        sampler = {"magFilter": NEAREST, "minFilter": NEAREST, "wrapS": wrap, "wrapT": wrap}
+        if sampler not in self.doc["samplers"]:
+            self.doc["samplers"].append(sampler)
+        return self.doc["samplers"].index(sampler)
+
+    def _texture(self, texture, wrap=CLAMP_TO_EDGE):
+        """The glTF texture of `texture` read with `wrap`, added with its image the first time
+        either is used."""
+        sampler = self._sampler(wrap)
         if texture not in self.textures:
             self.textures.append(texture)
             image = {"uri": texture.name}
             if texture.frames:  # the renderer plays the sequence; other viewers show the poster
                 image["extras"] = {"frames": texture.frames_pattern}
-            image = self._append("images", image)
-            self._append("textures", {"sampler": 0, "source": image})
-        return self.textures.index(texture)
+            self._append("images", image)
+        entry = {"sampler": sampler, "source": self.textures.index(texture)}
+        if entry not in self.doc["textures"]:
+            self._append("textures", entry)
+        return self.doc["textures"].index(entry)
+
+    def texture_info(self, texture, wrap=CLAMP_TO_EDGE, tex_coord=0, transform=None):
+        """A material's textureInfo: `texture` read with `wrap` at TEXCOORD_<tex_coord>, through
+        `transform` if given: KHR_texture_transform's {"offset", "rotation", "scale",
+        "texCoord"}, whose texCoord overrides `tex_coord`."""
+        info = {"index": self._texture(texture, wrap)}
+        if tex_coord:
+            info["texCoord"] = tex_coord
+        if transform:
+            self.use_extension("KHR_texture_transform")
+            info["extensions"] = {"KHR_texture_transform": dict(transform)}
+        return info
+
+    def set_alpha(self, material, mode, alpha=1.0, texture=None, cutoff=None):
+        """Coverage: alphaMode `mode` ("MASK" or "BLEND") with alpha = `alpha` (baseColorFactor's
+        fourth component) times the alpha of `texture` (a baseColorTexture textureInfo, whose
+        RGB also multiplies the base colour); a MASK cuts at `cutoff`, glTF's 0.5 if None."""
+        entry = self.doc["materials"][material]
+        entry["pbrMetallicRoughness"]["baseColorFactor"][3] = alpha
+        if texture is not None:
+            entry["pbrMetallicRoughness"]["baseColorTexture"] = texture
+        entry["alphaMode"] = mode
+        if cutoff is not None:
+            entry["alphaCutoff"] = cutoff
+
+    def set_normal_texture(self, material, texture, scale=1.0):
+        """A tangent-space normal map (a normalTexture textureInfo of linear data) and its scale."""
+        self.doc["materials"][material]["normalTexture"] = dict(texture, scale=scale)
+
+    def set_emission(self, material, texture, strength, factor=(1.0, 1.0, 1.0)):
+        """Emission: `factor` times the emissiveTexture textureInfo `texture` (None: the factor
+        alone) times `strength` (KHR_materials_emissive_strength)."""
+        self.use_extension("KHR_materials_emissive_strength")
+        entry = self.doc["materials"][material]
+        if texture is not None:
+            entry["emissiveTexture"] = texture
+        entry["emissiveFactor"] = list(factor)
+        entry.setdefault("extensions", {})["KHR_materials_emissive_strength"] = {"emissiveStrength": strength}
 
     def emissive_material(self, name, texture, strength, double_sided=False):
         """Black and rough, emitting `texture` times `strength` (the radiance of a white texel),
@@ -120,20 +174,25 @@ class Gltf:
         purpose is exempt from check()'s test that the camera sees its front."""
         if facing_away:
             self.facing_away.add(name)
-        primitive = {
-            "attributes": {"POSITION": self._vectors(mesh.positions, bounds=True),
-                           "NORMAL": self._vectors(mesh.normals),
-                           "TEXCOORD_0": self._vectors(mesh.uvs)},
-            "indices": self._indices(mesh.indices), "material": material, "mode": TRIANGLES}
+        attributes = {"POSITION": self._vectors(mesh.positions, bounds=True),
+                      "NORMAL": self._vectors(mesh.normals),
+                      "TEXCOORD_0": self._vectors(mesh.uvs)}
+        if mesh.uvs1:
+            attributes["TEXCOORD_1"] = self._vectors(mesh.uvs1)
+        if mesh.tangents:
+            attributes["TANGENT"] = self._vectors(mesh.tangents)
+        primitive = {"attributes": attributes, "indices": self._indices(mesh.indices),
+                     "material": material, "mode": TRIANGLES}
         self._node({"name": name, "mesh": self._append("meshes", {"name": name,
                                                                   "primitives": [primitive]})})
 
     def punctual_light(self, name, kind, intensity, color=(1.0, 1.0, 1.0), position=(0.0, 0.0, 0.0),
-                       direction=(0.0, -1.0, 0.0), cones=None):
+                       direction=(0.0, -1.0, 0.0), cones=None, required=True):
         """A KHR_lights_punctual light (candela; lux for "directional") at `position`, shining
         along `direction` (spot and directional); `cones`: a spot's (inner, outer) angles. The
-        file requires the extension: without its lights a scene is not the one written."""
-        for key in ("extensionsUsed", "extensionsRequired"):
+        file requires the extension unless not `required`: without its lights a scene is not the
+        one written, but a scene that shows another feature still shows it."""
+        for key in ("extensionsUsed", "extensionsRequired")[:2 if required else 1]:
             if "KHR_lights_punctual" not in self.doc.setdefault(key, []):
                 self.doc[key].append("KHR_lights_punctual")
         lights = self.doc.setdefault("extensions", {}).setdefault("KHR_lights_punctual", {"lights": []})["lights"]
@@ -174,7 +233,7 @@ def read_accessor(doc, blob, index):
     """An accessor's elements (tuples, or ints for indices), asserting it lies in its view."""
     accessor = doc["accessors"][index]
     view = doc["bufferViews"][accessor["bufferView"]]
-    width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3}[accessor["type"]]
+    width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[accessor["type"]]
     code = "I" if accessor["componentType"] == UNSIGNED_INT else "f"
     assert accessor["count"] * width * 4 <= view["byteLength"], index
     flat = struct.unpack_from(f"<{accessor['count'] * width}{code}", blob, view["byteOffset"])
@@ -184,8 +243,9 @@ def read_accessor(doc, blob, index):
 def check(doc, blob, facing_away=()):
     """Asserts the document is consistent with its buffer: views and accessors lie within it,
     attribute counts agree, POSITION bounds match the bytes, indices are in range, every triangle
-    is wound counter-clockwise around its normals, and the camera sees each emitter's front faces
-    (but those of the meshes named in `facing_away`)."""
+    is wound counter-clockwise around its normals, tangents are unit, at right angles to the
+    normals and carry a handedness of +-1, and the camera sees each emitter's front faces (but
+    those of the meshes named in `facing_away`)."""
     assert len(blob) == doc["buffers"][0]["byteLength"] and len(blob) % 4 == 0
     for view in doc["bufferViews"]:
         assert view["byteOffset"] % 4 == 0
@@ -202,6 +262,14 @@ def check(doc, blob, facing_away=()):
             assert [f32(x) for x in bounds["min"]] == [min(v[k] for v in p) for k in range(3)]
             assert [f32(x) for x in bounds["max"]] == [max(v[k] for v in p) for k in range(3)]
             assert all(0 <= i < len(p) for i in indices)
+            if "TEXCOORD_1" in attributes:
+                assert len(read_accessor(doc, blob, attributes["TEXCOORD_1"])) == len(p)
+            if "TANGENT" in attributes:
+                tangents = read_accessor(doc, blob, attributes["TANGENT"])
+                assert len(tangents) == len(p), mesh["name"]
+                for t, normal in zip(tangents, n):
+                    assert abs(dot(t[:3], t[:3]) - 1) < 1e-5 and abs(dot(t[:3], normal)) < 1e-5, mesh["name"]
+                    assert t[3] in (1.0, -1.0), mesh["name"]
             emitter = "emissiveTexture" in doc["materials"][primitive["material"]]
             facing_camera = 0
             for t in range(0, len(indices), 3):
