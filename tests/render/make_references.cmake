@@ -5,7 +5,7 @@
 include(${CMAKE_CURRENT_LIST_DIR}/reference_settings.cmake)
 get_filename_component(root ${CMAKE_CURRENT_LIST_DIR}/../.. ABSOLUTE)
 if(NOT SCENES)
-  set(SCENES ${TRS_REFERENCE_SCENES} ${TRS_REFERENCE_REAL_SCENES})
+  set(SCENES ${TRS_REFERENCE_SCENES} ${TRS_REFERENCE_REAL_SCENES} ${TRS_REFERENCE_MATERIAL_SCENES})
 endif()
 foreach(scene IN LISTS SCENES)
   get_filename_component(name ${scene} NAME)
