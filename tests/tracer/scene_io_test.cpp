@@ -14,6 +14,7 @@
 
 #include "scene_io/color.h"
 #include "scene_io/image_output.h"
+#include "support/image_files.h"
 #include "support/scratch_dir.h"
 #include "tracer/gltf_scene.h"
 
@@ -307,42 +308,8 @@ TEST_F(SceneIoTest, PunctualLightsInTheRenderersUnits) {
 
 // An extension the file requires and the renderer does not implement is refused by name; one it
 // implements is not.
-/// An 8-bit RGBA PNG of `rgba` (4 bytes per pixel, top row first), its pixels deflate-stored:
-/// the image writers write RGB only.
-std::string png_rgba(std::uint32_t width, std::uint32_t height, const std::vector<unsigned char>& rgba) {
-  auto crc32 = [](const std::string& bytes) {
-    std::uint32_t crc = 0xffffffffu;
-    for (const char c : bytes) {
-      crc ^= std::uint8_t(c);
-      for (int k = 0; k < 8; ++k) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
-    }
-    return crc ^ 0xffffffffu;
-  };
-  auto be32 = [](std::uint32_t v) {
-    return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
-  };
-  auto chunk = [&](const std::string& type, const std::string& data) {
-    return be32(std::uint32_t(data.size())) + type + data + be32(crc32(type + data));
-  };
-  std::string raw;  // each row after its filter byte 0
-  for (std::uint32_t y = 0; y < height; ++y) {
-    raw += '\0';
-    raw.append(reinterpret_cast<const char*>(&rgba[4 * std::size_t(y) * width]), 4 * std::size_t(width));
-  }
-  std::uint32_t a = 1, b = 0;  // Adler-32
-  for (const char c : raw) {
-    a = (a + std::uint8_t(c)) % 65521;
-    b = (b + a) % 65521;
-  }
-  const auto length = std::uint16_t(raw.size());  // one stored block: small images only
-  const std::string zlib = std::string{0x78, 0x01, 0x01} + char(length & 0xff) + char(length >> 8) +
-                           char(~length & 0xff) + char((~length >> 8) & 0xff) + raw + be32((b << 16) | a);
-  const std::string header = be32(width) + be32(height) + std::string{8, 6, 0, 0, 0};
-  return std::string("\x89PNG\r\n\x1a\n", 8) + chunk("IHDR", header) + chunk("IDAT", zlib) + chunk("IEND", "");
-}
-
 TEST_F(SceneIoTest, AlphaNormalMapsTextureTransformsAndUvSets) {
-  const std::string png = png_rgba(2, 1, {128, 128, 128, 255, 255, 0, 64, 51});
+  const std::string png = trs_test::png_file(2, 1, 4, 8, {128, 128, 128, 255, 255, 0, 64, 51});
   std::ofstream(file("rgba.png"), std::ios::binary) << png;
   Gltf gltf;
   gltf.doc["extensionsUsed"] = {"KHR_texture_transform"};
