@@ -10,6 +10,8 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <filesystem>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <span>
@@ -24,6 +26,7 @@
 #include "report.h"
 #include "run.h"
 #include "scene_io/file_error.h"
+#include "slurm.h"
 #include "scene_io/image_output.h"
 #include "tracer/gltf_scene.h"
 #include "tracer/renderer.h"
@@ -113,10 +116,44 @@ py::tuple image_and_stats(Image& image) {
   return py::make_tuple(array_of(std::move(r.rgb), {py::ssize_t(r.height), py::ssize_t(r.width), 3}), dict_of(image.stats));
 }
 
+/// trs-render --submit slurm: the job id; with wait=True, RuntimeError naming the frames of the
+/// tasks that failed. `program` is the trs-render the nodes run, by default the one on the PATH.
+std::string submit(const py::object& scene, const py::kwargs& kwargs) {
+  py::kwargs options;
+  py::object program = py::none();
+  for (const auto& [key, value] : kwargs) {
+    if (py::str(key).cast<std::string>() == "program")
+      program = py::reinterpret_borrow<py::object>(value);
+    else
+      options[key] = value;
+  }
+  if (!options.contains("submit")) options["submit"] = "slurm";
+  if (program.is_none()) program = py::module_::import("shutil").attr("which")("trs-render");
+  if (program.is_none())
+    throw py::value_error("submit() needs trs-render for the nodes to run: put it on the PATH or give program=");
+  const std::filesystem::path executable =
+      std::filesystem::absolute(py::str(py::module_::import("os").attr("fspath")(program)).cast<std::string>());
+  const trs::RenderOptions parsed = parse(scene, options);
+  if (!parsed.submit) throw py::value_error("submit() hands an animation to a scheduler: give frames='A:B'");
+  trs::SlurmOutcome outcome;
+  {
+    py::gil_scoped_release released;  // --wait blocks until the array ends
+    outcome = trs::submit_to_slurm(parsed, executable, std::cerr);
+  }
+  if (!outcome.missing.empty()) {
+    std::string frames;
+    for (const trs::FrameRange& range : outcome.missing) frames += (frames.empty() ? "" : ", ") + trs::to_string(range);
+    throw std::runtime_error("Slurm job " + outcome.job.id + " left frames " + frames + " unwritten (logs: " +
+                             outcome.job.log_pattern.string() + ")");
+  }
+  return outcome.job.id;
+}
+
 py::object render(const py::object& scene, const py::kwargs& kwargs) {
   const auto start = Clock::now();
   const trs::RenderOptions options = parse(scene, kwargs);
   if (options.plan_chunk) throw py::value_error("--plan prints trs-render commands: run trs-render for it");
+  if (options.submit) throw py::value_error("--submit hands the frames to a scheduler: call submit() for it");
   std::vector<Image> images;
   std::ostringstream out;
   std::vector<trs::RunNote> notes;  // kept until the GIL is back
@@ -277,6 +314,10 @@ PYBIND11_MODULE(trs_render, m) {
         "render(scene, **options) -> (image, stats): image float32 (height, width, 3) linear radiance, "
         "stats the dict that --stats writes. With frames='A:B', a list of (image, stats), one per frame. "
         "Outputs named by out, preview, stats, variance or emitter_mask are written as trs-render writes them.");
+  m.def("submit", &submit, py::arg("scene"),
+        "submit(scene, frames='A:B', out=PATTERN, **options) -> job id: trs-render --submit slurm, the "
+        "frames as one Slurm job array (chunk=, sbatch='ARGS', wait=True as trs-render's options); "
+        "program= names the trs-render the nodes run (default: the one on the PATH).");
   m.def("emitter_mask", &emitter_mask, py::arg("scene"),
         "emitter_mask(scene, **options) -> float32 (height, width): each pixel's fraction of camera "
         "samples whose first hit is an emitter (spp of them, default 16).");

@@ -522,7 +522,12 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
         tiny(kAnimated, {"--frames", "2:1", "--out", file("out.%04d.exr").string()}),
         tiny(kAnimated, {"--frames", "two", "--out", file("out.%04d.exr").string()}),
         tiny(kAnimated, {"--plan", "--out", file("out.exr").string()}),
-        tiny(kAnimated, {"--resume", "--out", file("out.exr").string()})}) {
+        tiny(kAnimated, {"--resume", "--out", file("out.exr").string()}),
+        tiny(kAnimated, {"--submit", "slurm", "--out", file("out.exr").string()}),
+        tiny(kAnimated, {"--frames", "0:2", "--submit", "pbs", "--out", file("out.%04d.exr").string()}),
+        tiny(kAnimated, {"--frames", "0:2", "--wait", "--out", file("out.%04d.exr").string()}),
+        tiny(kAnimated, {"--frames", "0:2", "--sbatch", "--hold", "--out", file("out.%04d.exr").string()}),
+        tiny(kAnimated, {"--frames", "0:2", "--plan", "--submit", "slurm", "--out", file("out.%04d.exr").string()})}) {
     const RunResult result = run(args);
     EXPECT_EQ(result.status, 2) << result.err;
     EXPECT_NE(result.err.find("trs-render: error: "), std::string::npos) << result.err;
@@ -772,6 +777,81 @@ TEST_F(RenderCliTest, PlanPrintsACommandPerChunkAndRendersNothing) {
     EXPECT_NE(lines[i].find("--frames " + range), std::string::npos) << lines[i];
     EXPECT_NE(lines[i].find(file("p.%04d.exr").string()), std::string::npos) << lines[i];
     EXPECT_EQ(lines[i].find("--plan"), std::string::npos) << lines[i];
+  }
+}
+
+/// An `sbatch` for the tests, first on the PATH while it lives: it keeps its arguments and its
+/// batch script in DIR/args and DIR/script, prints a job id as --parsable asks, and with --wait
+/// runs the array's tasks itself, one after the other, as Slurm would on one node (but task
+/// `skipped`), failing if one failed.
+class StandInSbatch {
+ public:
+  StandInSbatch(const fs::path& dir, int skipped = -1)
+      : dir_(dir), path_("PATH", (dir.string() + ":" + std::getenv("PATH")).c_str()) {
+    write_file(dir / "sbatch", "#!/bin/sh\n"
+                               "dir=$(dirname \"$0\"); echo \"$@\" > \"$dir/args\"\n"
+                               "for script; do :; done; cp \"$script\" \"$dir/script\"; echo 4242\n"
+                               "case \" $* \" in *\" --wait \"*) ;; *) exit 0 ;; esac\n"
+                               "tasks=$(sed -n 's/^#SBATCH --array=0-//p' \"$script\"); status=0\n"
+                               "for i in $(seq 0 \"$tasks\"); do\n"
+                               "  [ \"$i\" = " + std::to_string(skipped) + " ] && { status=1; continue; }\n"
+                               "  SLURM_ARRAY_TASK_ID=$i sh \"$dir/script\" > /dev/null 2>&1 || status=1\n"
+                               "done\nexit $status\n");
+    fs::permissions(dir / "sbatch", fs::perms::owner_all);
+  }
+  std::string args() const { return read_file(dir_ / "args"); }
+  std::string script() const { return read_file(dir_ / "script"); }
+
+ private:
+  fs::path dir_;
+  trs_test::ScopedEnvironment path_;
+};
+
+// --submit slurm: one array task per chunk, each the --plan command with --resume, run by this
+// trs-render's absolute path; --sbatch's words reach sbatch; the job id alone on standard output.
+TEST_F(RenderCliTest, SubmitHandsTheChunksToSlurmAsOneArray) {
+  fs::create_directories(file("bin"));
+  const StandInSbatch sbatch(file("bin"));
+  const RunResult result = run(tiny(kAnimated, {"--frames", "0:4", "--chunk", "2", "--submit", "slurm", "--sbatch",
+                                                "--partition=gpu --time=10", "--out", file("s/f.%04d.exr").string()}));
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(result.out, "4242\n");
+  EXPECT_NE(result.err.find("Slurm job 4242: frames 0:4 in 3 tasks"), std::string::npos) << result.err;
+  EXPECT_NE(sbatch.args().find("--parsable --partition=gpu --time=10 "), std::string::npos) << sbatch.args();
+  const std::string script = sbatch.script();
+  EXPECT_NE(script.find("#SBATCH --array=0-2\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("#SBATCH --output=" + file("s").string() + "/trs-render-%A_%a.log\n"), std::string::npos) << script;
+  for (const char* range : {"0:1", "2:3", "4:4"})
+    EXPECT_NE(script.find(" --resume --frames " + std::string(range) + " ;;"), std::string::npos) << script;
+  EXPECT_NE(script.find(") exec /"), std::string::npos) << "not an absolute path: " << script;
+  EXPECT_EQ(script.find("--submit"), std::string::npos) << script;
+  EXPECT_EQ(script.find("--sbatch"), std::string::npos) << script;
+  EXPECT_EQ(listing(), (std::set<std::string>{"bin", "s"}));  // the batch script is gone
+}
+
+// --wait: the tasks' frames equal a render of the range here, bit for bit; a task that did not
+// run fails the submission, which names its frames; submitted again, only those are rendered.
+TEST_F(RenderCliTest, SubmitWaitRendersTheFramesAsHereAndNamesTheMissingOnes) {
+  const std::vector<std::string> local = tiny(kAnimated, {"--frames", "0:3", "--out", file("here.%04d.exr").string()});
+  ASSERT_EQ(run(local).status, 0);
+  fs::create_directories(file("bin"));
+  const std::vector<std::string> submit = tiny(kAnimated, {"--frames", "0:3", "--chunk", "2", "--submit", "slurm", "--wait",
+                                                     "--out", file("s/f.%04d.exr").string()});
+  {
+    const StandInSbatch sbatch(file("bin"), 1);
+    const RunResult failed = run(submit);
+    EXPECT_EQ(failed.status, 1) << failed.err;
+    EXPECT_NE(failed.err.find("task 1 left frames 2:3 unwritten"), std::string::npos) << failed.err;
+  }
+  const auto written = fs::last_write_time(file("s/f.0000.exr"));
+  const StandInSbatch sbatch(file("bin"));
+  const RunResult again = run(submit);
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_EQ(fs::last_write_time(file("s/f.0000.exr")), written);  // --resume: not rendered again
+  for (const char* frame : {"0000", "0001", "0002", "0003"}) {
+    const trs::Image here = trs::read_exr(file(std::string("here.") + frame + ".exr"));
+    const trs::Image there = trs::read_exr(file(std::string("s/f.") + frame + ".exr"));
+    EXPECT_EQ(here.rgb, there.rgb) << "frame " << frame;
   }
 }
 

@@ -6,13 +6,16 @@
 
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 #include <new>
 #include <string>
 #include <vector>
 
 #include "options.h"
+#include "plan.h"
 #include "run.h"
+#include "slurm.h"
 
 namespace trs {
 namespace {
@@ -26,47 +29,37 @@ extern "C" void on_interrupt(int) {
   std::signal(SIGINT, SIG_DFL);
 }
 
-/// A shell word: as it is when it is safe, in single quotes otherwise.
-std::string quoted(const std::string& word) {
-  if (!word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.,/:=%+@") ==
-                           std::string::npos)
-    return word;
-  std::string out = "'";
-  for (const char c : word) {
-    if (c == '\'')
-      out.append("'\\''");
-    else
-      out.push_back(c);
-  }
-  out.push_back('\'');
-  return out;
-}
-
 /// --plan: the command line once per chunk of frames, with that chunk's --frames and without
 /// --plan and --chunk.
 int print_plan(const RenderOptions& options) {
-  std::vector<std::string> kept;
-  for (std::size_t i = 1; i < options.arguments.size(); ++i) {
-    const std::string& a = options.arguments[i];
-    if (a == "--plan" || a.starts_with("--chunk=") || a.starts_with("--frames=")) continue;
-    if (a == "--chunk" || a == "--frames") {
-      ++i;  // and its value
-      continue;
-    }
-    kept.push_back(a);
+  for (const PlannedCommand& c : plan_commands(options, options.arguments[0], *options.plan_chunk, false))
+    std::cout << c.command << '\n';
+  return 0;
+}
+
+/// --submit slurm: the job id on standard output, the rest on standard error; with --wait, the
+/// frames of the tasks that failed.
+int submit(const RenderOptions& options) {
+  const SlurmOutcome outcome = submit_to_slurm(options, std::filesystem::canonical("/proc/self/exe"), std::cerr);
+  std::cout << outcome.job.id << std::endl;
+  if (!options.submit->wait) return 0;
+  for (std::size_t i = 0; i < outcome.missing.size(); ++i) {
+    std::cerr << "trs-render: error: Slurm job " << outcome.job.id << " task " << outcome.missing_tasks[i]
+              << " left frames " << to_string(outcome.missing[i]) << " unwritten (its log: trs-render-"
+              << outcome.job.id << "_" << outcome.missing_tasks[i] << ".log beside the outputs)\n";
   }
-  const FrameRange frames = *options.frames;
-  for (std::int64_t first = frames.first; first <= frames.last; first += *options.plan_chunk) {
-    const std::int64_t last = std::min(frames.last, first + *options.plan_chunk - 1);
-    std::cout << quoted(options.arguments[0]);
-    for (const std::string& a : kept) std::cout << ' ' << quoted(a);
-    std::cout << " --frames " << to_string(FrameRange{first, last}) << '\n';
+  if (!outcome.missing.empty()) return kRunFailed;
+  if (outcome.sbatch_status != 0) {
+    std::cerr << "trs-render: error: Slurm job " << outcome.job.id << " ended with sbatch status "
+              << outcome.sbatch_status << ", though every frame is written\n";
+    return kRunFailed;
   }
   return 0;
 }
 
 int run(const RenderOptions& options) {
   if (options.plan_chunk) return print_plan(options);
+  if (options.submit) return submit(options);
   const auto start = std::chrono::steady_clock::now();
   // From here on, Ctrl-C stops cleanly: temporaries are removed and what is done is saved.
   std::signal(SIGINT, on_interrupt);

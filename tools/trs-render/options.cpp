@@ -237,11 +237,13 @@ struct LightSamplerOptions {
   void finish(lightsampler::SamplerOptions& sampler) const { sampler.backend = kBackends.at(backend); }
 };
 
-/// --frames and --fps, and how a sequence runs: --resume, --plan, --chunk.
+/// --frames and --fps, and how a sequence runs: --resume, --plan, --submit, --chunk.
 struct AnimationOptions {
   std::string frames;
   std::int64_t chunk = 1;
   bool plan = false;
+  std::string submit;
+  RenderOptions::Submission submission;
 
   void add(CLI::App& app, RenderOptions& options) {
     app.add_option("--frames", frames,
@@ -254,7 +256,17 @@ struct AnimationOptions {
     app.add_flag("--plan", plan,
                  "--frames: print one trs-render command per chunk of frames (for GNU parallel or a Slurm "
                  "array) and render nothing");
-    app.add_option("--chunk", chunk, "--plan: frames per command")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--submit", submit,
+                   "--frames: submit the frames to a scheduler as one job array, a task per chunk, each "
+                   "the command --plan prints with --resume; print the job id and return (docs/cluster.md)")
+        ->check(CLI::IsMember({"slurm"}));
+    app.add_option("--sbatch", submission.sbatch,
+                   "--submit: options for sbatch, as the shell splits them ('--partition=gpu --gres=gpu:1')");
+    app.add_flag("--wait", submission.wait,
+                 "--submit: wait for the job array to end; fail, naming the frames, if any task failed");
+    app.add_option("--chunk", chunk, "--plan and --submit: frames per command")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
   }
 
   UsageError finish(const CLI::App& app, RenderOptions& options) const {
@@ -263,7 +275,15 @@ struct AnimationOptions {
       if (!options.frames) return "--frames takes A:B, frames 0 <= A <= B (" + frames + ")";
     }
     if (plan) options.plan_chunk = chunk;
-    return misplaced(app, {"--resume", "--plan", "--chunk"}, options.frames.has_value(), "belongs to --frames");
+    if (!submit.empty()) {
+      options.submit = submission;
+      options.submit->chunk = chunk;
+    }
+    if (plan && options.submit) return "--plan and --submit are two ways to run the frames: give one";
+    if (UsageError error = misplaced(app, {"--sbatch", "--wait"}, options.submit.has_value(), "belongs to --submit"))
+      return error;
+    return misplaced(app, {"--resume", "--plan", "--submit", "--chunk"}, options.frames.has_value(),
+                     "belongs to --frames");
   }
 };
 

@@ -49,7 +49,14 @@ struct RenderOptions {
   bool resume = false;  ///< skip the frames whose outputs are all written
   /// --plan: print a command per chunk of this many frames instead of rendering.
   std::optional<std::int64_t> plan_chunk;
-  std::vector<std::string> arguments;  ///< the command line, for --plan
+  /// --submit slurm: hand the frames to Slurm as one job array instead of rendering.
+  struct Submission {
+    std::int64_t chunk = 1;  ///< frames per array task
+    std::string sbatch;      ///< --sbatch: sbatch's own options, as the shell splits them
+    bool wait = false;       ///< --wait: block until the array ends
+  };
+  std::optional<Submission> submit;
+  std::vector<std::string> arguments;  ///< the command line, for --plan and --submit
 };
 
 /// An output's path for animation frame `frame`: the pattern formatted with a sequence, the path

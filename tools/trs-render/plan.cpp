@@ -1,0 +1,61 @@
+#include "plan.h"
+
+#include <algorithm>
+#include <array>
+#include <string_view>
+
+namespace trs {
+namespace {
+
+/// The options a planned command leaves out, and whether each takes a value.
+struct Dropped {
+  std::string_view name;
+  bool value;
+};
+constexpr std::array kDropped = {Dropped{"--plan", false}, Dropped{"--wait", false}, Dropped{"--chunk", true},
+                                 Dropped{"--frames", true}, Dropped{"--submit", true}, Dropped{"--sbatch", true}};
+
+}  // namespace
+
+std::string shell_quoted(const std::string& word) {
+  if (!word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.,/:=%+@") ==
+                           std::string::npos)
+    return word;
+  std::string out = "'";
+  for (const char c : word) {
+    if (c == '\'')
+      out.append("'\\''");
+    else
+      out.push_back(c);
+  }
+  out.push_back('\'');
+  return out;
+}
+
+std::vector<PlannedCommand> plan_commands(const RenderOptions& options, const std::string& program,
+                                          std::int64_t chunk, bool resume) {
+  std::string kept;
+  bool has_resume = false;
+  for (std::size_t i = 1; i < options.arguments.size(); ++i) {
+    const std::string& a = options.arguments[i];
+    const auto dropped = std::find_if(kDropped.begin(), kDropped.end(), [&](const Dropped& d) {
+      return a == d.name || (d.value && a.starts_with(std::string(d.name) + "="));
+    });
+    if (dropped != kDropped.end()) {
+      if (dropped->value && a == dropped->name) ++i;  // and its value
+      continue;
+    }
+    has_resume = has_resume || a == "--resume";
+    kept.append(" ").append(shell_quoted(a));
+  }
+  if (resume && !has_resume) kept += " --resume";
+  std::vector<PlannedCommand> commands;
+  const FrameRange frames = *options.frames;
+  for (std::int64_t first = frames.first; first <= frames.last; first += chunk) {
+    const FrameRange part{first, std::min(frames.last, first + chunk - 1)};
+    commands.push_back({part, shell_quoted(program) + kept + " --frames " + to_string(part)});
+  }
+  return commands;
+}
+
+}  // namespace trs
