@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/relmse.h"
+#include "lightsampler/backend.h"
 
 namespace trs {
 
@@ -149,6 +150,12 @@ nlohmann::json display_setting(const std::optional<DisplayEncoder>& preview, std
   return preview->transform().*name;
 }
 
+/// This machine's name: the node a scheduler ran the render on.
+std::string host_name() {
+  char name[256] = {};
+  return gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string("unknown");
+}
+
 }  // namespace
 
 nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResult& result,
@@ -201,6 +208,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
       {"animation_seconds", frame ? nlohmann::json(frame->seconds) : nlohmann::json()},
       {"emission_update_ms", frame ? update_json(frame->update) : nlohmann::json()},
       {"light_sampler", result.light_device},
+      {"host", {{"node", host_name()}, {"cpu", lightsampler::cpu_device()}}},
       {"light_structure", light_structure(result.light_structure)},
       {"wall_seconds", wall_seconds},
       {"setup_seconds", result.setup_seconds},

@@ -32,6 +32,9 @@ class VulkanUnavailable : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The processor's model name (/proc/cpuinfo), the CPU backend's Sampler::device().
+std::string cpu_device();
+
 /// Whether this build of the library has the Vulkan backend.
 bool has_vulkan_backend();
 

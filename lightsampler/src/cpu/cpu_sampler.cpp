@@ -20,12 +20,7 @@
 
 namespace lightsampler {
 
-namespace {
-
-// Elements per packed atomic in the unordered scan (the size of a GPU subgroup reduction).
-constexpr std::size_t kScanBlock = 256;
-
-std::string cpu_model() {
+std::string cpu_device() {
   std::ifstream in("/proc/cpuinfo");
   for (std::string line; std::getline(in, line);)
     if (line.rfind("model name", 0) == 0) {
@@ -34,6 +29,11 @@ std::string cpu_model() {
     }
   return "unknown CPU";
 }
+
+namespace {
+
+// Elements per packed atomic in the unordered scan (the size of a GPU subgroup reduction).
+constexpr std::size_t kScanBlock = 256;
 
 class Stopwatch {
  public:
@@ -52,7 +52,7 @@ class CpuSampler final : public Sampler {
  public:
   CpuSampler(const MeshView& mesh, std::span<const DensityMapView> maps, const CpuOptions& options)
       : arena_(int(worker_threads(options))),
-        device_(cpu_model()),
+        device_(cpu_device()),
         scene_(arena_.execute([&] { return core::HostScene(mesh, maps); })),
         stale_(maps.size(), 0) {}
 
