@@ -2,12 +2,13 @@
 # The tests, at two depths.
 #
 #   bash tools/check.sh         installs the dependencies, builds everything in Release and runs the
-#                               whole test suite (ctest) but the GPU report's quick run; then builds
-#                               the library alone, without its Vulkan backend, and runs that
-#                               configuration's tests. Minutes.
+#                               whole test suite (ctest) but the GPU report's quick run and the
+#                               cluster tests; then builds the library alone, without its Vulkan
+#                               backend, and runs that configuration's tests. Minutes.
 #   bash tools/check.sh --full  then also installs the Python modules with pip into a fresh venv and
-#                               runs an example from it; compares the courtyard's punctual lights
-#                               with Blender's Cycles; builds everything without OpenImageIO, runs
+#                               runs an example from it; submits animations and a study to a
+#                               one-node Slurm cluster of its own (label cluster); compares the
+#                               courtyard's punctual lights with Blender's Cycles; builds everything without OpenImageIO, runs
 #                               its tests and the GPU report's quick run from its bundle; builds
 #                               everything with the sanitizers and runs the tests under them; and
 #                               fuzzes the parsers of user files for a fixed time each. CI runs this.
@@ -25,7 +26,8 @@ cmake --build build
 export LIGHTSAMPLER_REQUIRE_VULKAN=1  # Vulkan tests fail rather than skip without a device
 # All but the GPU report's quick run, which --full runs from the report's bundle (minutes on a
 # CPU device; the tools it drives have tests of their own here).
-ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -E '^gpu_report_quick$'
+ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -E '^gpu_report_quick$' -LE cluster
+echo "check.sh: the cluster tests (a local Slurm) are left out here; tools/check.sh --full runs them"
 # The library alone, CPU backend only: it must build, pass its tests and install without Vulkan.
 cmake -S . -B build-cpu-only -G Ninja -DCMAKE_BUILD_TYPE=Release -DLIGHTSAMPLER_VULKAN=OFF \
   -DLIGHTSAMPLER_BUILD_TOOLS=OFF
@@ -40,6 +42,10 @@ rm -rf build-pip/venv
 /usr/bin/python3 -m venv --system-site-packages build-pip/venv  # Debian's, with its numpy
 build-pip/venv/bin/pip install --no-build-isolation --no-index --quiet .
 (cd build-pip && venv/bin/python ../examples/python/variance.py --quick)
+# Animations and studies through a real Slurm: a one-node cluster started and stopped around
+# each test (tests/cluster/with_slurm.sh).
+bash tools/setup-debian.sh --cluster
+ctest --test-dir build --output-on-failure --timeout 600 -L cluster
 # Punctual lights against Blender's Cycles as its glTF importer reads the file: the courtyard's
 # mean over its lit pixels, diffuse materials in both (docs/renderer.md, "Punctual lights").
 bash tools/setup-debian.sh --blender
@@ -49,7 +55,7 @@ bash tools/setup-debian.sh --blender
 # packages: its tests, then the report's quick run from its bundle (tools/gpu-report.sh --bundle).
 cmake -S . -B build-noiio -G Ninja -DCMAKE_BUILD_TYPE=Release -DTRS_OPENIMAGEIO=OFF
 cmake --build build-noiio
-ctest --test-dir build-noiio --output-on-failure --timeout 600 -j "$(nproc)" -E '^gpu_report_quick$'
+ctest --test-dir build-noiio --output-on-failure --timeout 600 -j "$(nproc)" -E '^gpu_report_quick$' -LE cluster
 bash tools/gpu-report.sh --bundle --build build-noiio
 cmake -D ROOT="$PWD" -D BUILD="$PWD/.device" -D OUT="$PWD/build-noiio/gpu-report-bundled" \
   -P tests/gpu_report_quick.cmake

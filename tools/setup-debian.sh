@@ -2,7 +2,8 @@
 # Installs every Debian 12 package the project builds, tests and runs with; with --video also
 # ffmpeg, which only the animation demo (tools/demo.sh --animation) uses; with --blender also
 # Blender, whose Cycles renders the reference that tools/cycles_compare.py checks against
-# (tools/check.sh --full).
+# (tools/check.sh --full); with --cluster also Slurm and MUNGE, with which tools/slurm-local.sh
+# runs a one-node cluster for the tests labelled `cluster` (tests/cluster/with_slurm.sh).
 # Idempotent: does nothing when all of them are present. Needs root (or sudo).
 set -euo pipefail
 
@@ -32,7 +33,9 @@ for option in "$@"; do
   case "$option" in
     --video) packages+=(ffmpeg fonts-dejavu-core) ;;
     --blender) packages+=(blender) ;;
-    *) echo "usage: tools/setup-debian.sh [--video] [--blender]" >&2; exit 2 ;;
+    # slurmctld, slurmd and the client commands (slurm-wlm), munged and its key tool (munge)
+    --cluster) packages+=(slurm-wlm munge) ;;
+    *) echo "usage: tools/setup-debian.sh [--video] [--blender] [--cluster]" >&2; exit 2 ;;
   esac
 done
 
