@@ -184,18 +184,35 @@ def run(command):
         sys.exit(f"cycles_compare: {' '.join(map(str, command))} failed:\n{result.stdout[-2000:]}{result.stderr}")
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("scene", type=Path)
+COMPARISON_OPTIONS = ("render", "blender", "diffuse", "width", "height", "spp", "cycles_spp", "max_depth")
+
+
+def add_comparison_options(parser):
+    """The programs and the settings of a comparison, COMPARISON_OPTIONS (--out apart)."""
     parser.add_argument("--render", default="build/bin/trs-render", help="trs-render")
     parser.add_argument("--blender", default="blender")
-    parser.add_argument("--out", type=Path, required=True, help="folder for the images")
     parser.add_argument("--diffuse", action="store_true", help="Lambertian materials in both renderers")
     parser.add_argument("--width", type=int, default=320)
     parser.add_argument("--height", type=int, default=180)
     parser.add_argument("--spp", type=int, default=256, help="trs-render's samples per pixel")
     parser.add_argument("--cycles-spp", type=int, default=256)
     parser.add_argument("--max-depth", type=int, default=3)
+
+
+def comparison_arguments(args):
+    """COMPARISON_OPTIONS of parsed `args` as this script's command line takes them."""
+    words = []
+    for name in COMPARISON_OPTIONS:
+        value, flag = getattr(args, name), "--" + name.replace("_", "-")
+        words += ([flag] if value else []) if isinstance(value, bool) else [flag, str(value)]
+    return words
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("scene", type=Path)
+    parser.add_argument("--out", type=Path, required=True, help="folder for the images")
+    add_comparison_options(parser)
     parser.add_argument("--csv", type=Path, help="append a row per scene")
     parser.add_argument("--tolerance", type=float, help="exit 1 where the ratio is further than this from 1")
     args = parser.parse_args()

@@ -21,7 +21,7 @@ from pathlib import Path
 sys.dont_write_bytecode = True
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from scenes_gen import MATERIAL_SCENES  # noqa: E402
-from scenes_gen.gltf import write_settings  # noqa: E402
+from scenes_gen.gltf import write_scenes  # noqa: E402
 
 
 def features(doc):
@@ -50,16 +50,12 @@ def features(doc):
     return ", ".join(sorted(words))
 
 
-def main():
-    out = Path(sys.argv[1] if len(sys.argv) > 1 else "scenes/materials")
-    for name in sys.argv[2:] or MATERIAL_SCENES:
-        gltf, title, spp = MATERIAL_SCENES[name]()
-        gltf.write(out / name)
-        write_settings(out / name, title, spp)
-        triangles = sum(gltf.doc["accessors"][m["primitives"][0]["indices"]]["count"] // 3 for m in gltf.doc["meshes"])
-        maps = ", ".join(f"{t.name} {t.width}x{t.height}" for t in gltf.textures)
-        print(f"{name}: {triangles} triangles; {maps}; {features(gltf.doc)}")
+def summary(name, gltf):
+    """One line on what was written: triangles, maps and the material features used."""
+    triangles = sum(gltf.doc["accessors"][m["primitives"][0]["indices"]]["count"] // 3 for m in gltf.doc["meshes"])
+    maps = ", ".join(f"{t.name} {t.width}x{t.height}" for t in gltf.textures)
+    return f"{name}: {triangles} triangles; {maps}; {features(gltf.doc)}"
 
 
 if __name__ == "__main__":
-    main()
+    write_scenes(MATERIAL_SCENES, sys.argv[1:], "scenes/materials", summary)

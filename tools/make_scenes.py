@@ -19,7 +19,7 @@ from pathlib import Path
 sys.dont_write_bytecode = True
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from scenes_gen import SCENES  # noqa: E402
-from scenes_gen.gltf import write_settings  # noqa: E402
+from scenes_gen.gltf import write_scenes  # noqa: E402
 
 
 def summary(name, gltf):
@@ -35,14 +35,5 @@ def summary(name, gltf):
     return f"{name}: {triangles} triangles, {emitting} emitting; {maps}"
 
 
-def main():
-    out = Path(sys.argv[1] if len(sys.argv) > 1 else "scenes")
-    for name in sys.argv[2:] or SCENES:
-        gltf, title, spp = SCENES[name]()
-        gltf.write(out / name)
-        write_settings(out / name, title, spp)
-        print(summary(name, gltf))
-
-
 if __name__ == "__main__":
-    main()
+    write_scenes(SCENES, sys.argv[1:], "scenes", summary)

@@ -28,7 +28,7 @@ TOOLS = Path(__file__).resolve().parent
 sys.dont_write_bytecode = True  # importing the tools beside this one leaves no __pycache__
 sys.path[:0] = [str(TOOLS), str(TOOLS / "common")]
 import trs_measure  # noqa: E402
-from cycles_compare import REC709_Y  # noqa: E402
+from cycles_compare import REC709_Y, add_comparison_options, comparison_arguments  # noqa: E402
 
 MATERIALS = TOOLS.parent / "scenes" / "materials"
 COURTYARD = TOOLS.parent / "scenes" / "courtyard" / "courtyard.gltf"
@@ -46,10 +46,8 @@ def scene_files(args):
 
 def compare(scene, folder, args):
     """Runs tools/cycles_compare.py on `scene` into `folder`; None, or why it failed."""
-    command = [sys.executable, str(TOOLS / "cycles_compare.py"), str(scene), "--render", args.render,
-               "--blender", args.blender, "--out", str(folder), "--width", str(args.width), "--height",
-               str(args.height), "--spp", str(args.spp), "--cycles-spp", str(args.cycles_spp),
-               "--max-depth", str(args.max_depth), *(["--diffuse"] if args.diffuse else [])]
+    command = [sys.executable, str(TOOLS / "cycles_compare.py"), str(scene), "--out", str(folder),
+               *comparison_arguments(args)]
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         return (result.stderr.strip() or result.stdout.strip()).splitlines()[-1]
@@ -90,16 +88,9 @@ def write_preview(folder, path, exposure):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("scenes", nargs="*", type=Path, help="glTF files (default: every scene of scenes/materials)")
-    parser.add_argument("--render", default="build/bin/trs-render", help="trs-render")
-    parser.add_argument("--blender", default="blender")
     parser.add_argument("--out", type=Path, required=True, help="folder for the renders and previews")
     parser.add_argument("--courtyard", action="store_true", help="add scenes/courtyard")
-    parser.add_argument("--diffuse", action="store_true", help="Lambertian materials in both renderers")
-    parser.add_argument("--width", type=int, default=320)
-    parser.add_argument("--height", type=int, default=180)
-    parser.add_argument("--spp", type=int, default=256, help="trs-render's samples per pixel")
-    parser.add_argument("--cycles-spp", type=int, default=256)
-    parser.add_argument("--max-depth", type=int, default=3)
+    add_comparison_options(parser)
     parser.add_argument("--exposure", type=float, default=0.0, help="the previews' exposure, in stops")
     args = parser.parse_args()
 

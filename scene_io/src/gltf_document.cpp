@@ -285,48 +285,48 @@ std::optional<Document::Accessor> Document::vertex_attribute(const tinygltf::Pri
   return data;
 }
 
-std::vector<glm::vec3> Document::vec3s(const Accessor& data, const std::string& name,
-                                       const std::string& what) const {
-  if (data.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT || data.components != 3)
-    fail(what + ": " + name + " must be float VEC3");
-  std::vector<glm::vec3> values(data.count);
+template <int N>
+std::vector<glm::vec<N, float>> Document::float_vectors(const Accessor& data, const std::string& name,
+                                                        const std::string& what) const {
+  if (data.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT || data.components != N)
+    fail(what + ": " + name + " must be float VEC" + std::to_string(N));
+  std::vector<glm::vec<N, float>> values(data.count);
   for (std::size_t i = 0; i < data.count; ++i) {
     const unsigned char* e = data.element(i);
-    values[i] = {load<float>(e), load<float>(e + 4), load<float>(e + 8)};
+    for (int k = 0; k < N; ++k) values[i][k] = load<float>(e + 4 * k);
   }
   return values;
+}
+
+template <int N>
+std::optional<std::vector<glm::vec<N, float>>> Document::float_attribute(const tinygltf::Primitive& primitive,
+                                                                         const std::string& name,
+                                                                         std::size_t vertex_count,
+                                                                         const std::string& what) const {
+  const auto data = vertex_attribute(primitive, name, vertex_count, what);
+  if (!data) return std::nullopt;
+  return float_vectors<N>(*data, name, what);
 }
 
 std::vector<glm::vec3> Document::positions(const tinygltf::Primitive& primitive,
                                            const std::string& what) const {
   const auto position = primitive.attributes.find("POSITION");
   if (position == primitive.attributes.end()) fail(what + " has no POSITION");
-  return vec3s(locate(position->second, what + " POSITION"), "POSITION", what);
+  return float_vectors<3>(locate(position->second, what + " POSITION"), "POSITION", what);
 }
 
 std::optional<std::vector<glm::vec3>> Document::vec3_attribute(const tinygltf::Primitive& primitive,
                                                                const std::string& name,
                                                                std::size_t vertex_count,
                                                                const std::string& what) const {
-  const auto data = vertex_attribute(primitive, name, vertex_count, what);
-  if (!data) return std::nullopt;
-  return vec3s(*data, name, what);
+  return float_attribute<3>(primitive, name, vertex_count, what);
 }
 
 std::optional<std::vector<glm::vec4>> Document::vec4_attribute(const tinygltf::Primitive& primitive,
                                                                const std::string& name,
                                                                std::size_t vertex_count,
                                                                const std::string& what) const {
-  const auto data = vertex_attribute(primitive, name, vertex_count, what);
-  if (!data) return std::nullopt;
-  if (data->component_type != TINYGLTF_COMPONENT_TYPE_FLOAT || data->components != 4)
-    fail(what + ": " + name + " must be float VEC4");
-  std::vector<glm::vec4> values(data->count);
-  for (std::size_t i = 0; i < data->count; ++i) {
-    const unsigned char* e = data->element(i);
-    values[i] = {load<float>(e), load<float>(e + 4), load<float>(e + 8), load<float>(e + 12)};
-  }
-  return values;
+  return float_attribute<4>(primitive, name, vertex_count, what);
 }
 
 std::optional<std::vector<glm::vec2>> Document::vec2_attribute(const tinygltf::Primitive& primitive,

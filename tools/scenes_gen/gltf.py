@@ -2,6 +2,7 @@
 and render.toml, the renderer's default settings."""
 import json
 import struct
+from pathlib import Path
 
 from .vec import add, cross, dot, f32, mul, normalize, quaternion, short_f32, sub
 
@@ -286,3 +287,14 @@ def write_settings(folder, title, spp, max_depth=4, lights='"auto"'):
              f"width = {WIDTH}", f"height = {HEIGHT}", f"spp = {spp}",
              f"max-depth = {max_depth}", f"lights = {lights}"]
     (folder / "render.toml").write_text("\n".join(lines) + "\n")
+
+
+def write_scenes(table, argv, default_out, describe):
+    """The generators' command line: `OUT [NAME...]` writes each scene of `table` named (every one
+    without names) into OUT/<name>/ with its render.toml, and prints describe(name, gltf)."""
+    out = Path(argv[0] if argv else default_out)
+    for name in argv[1:] or table:
+        gltf, title, spp = table[name]()
+        gltf.write(out / name)
+        write_settings(out / name, title, spp)
+        print(describe(name, gltf))

@@ -100,8 +100,14 @@ class Document {
   std::optional<Accessor> vertex_attribute(const tinygltf::Primitive& primitive,
                                            const std::string& name, std::size_t vertex_count,
                                            const std::string& what) const;
-  std::vector<glm::vec3> vec3s(const Accessor& data, const std::string& name,
-                               const std::string& what) const;
+  /// A float VECN accessor's elements; `name` and `what` for messages.
+  template <int N>
+  std::vector<glm::vec<N, float>> float_vectors(const Accessor& data, const std::string& name,
+                                                const std::string& what) const;
+  template <int N>
+  std::optional<std::vector<glm::vec<N, float>>> float_attribute(const tinygltf::Primitive& primitive,
+                                                                 const std::string& name, std::size_t vertex_count,
+                                                                 const std::string& what) const;
   std::vector<std::uint32_t> vertex_sequence(const tinygltf::Primitive& primitive,
                                              std::size_t vertex_count,
                                              const std::string& what) const;
