@@ -52,9 +52,9 @@ bash tools/setup-debian.sh --blender
 /usr/bin/python3 tools/cycles_compare.py scenes/courtyard/courtyard.gltf --render build/bin/trs-render \
   --out build/cycles-compare --diffuse --spp 128 --cycles-spp 128 --tolerance 0.05
 # The build without OpenImageIO, which the GPU report carries to machines without the project's
-# packages: the tests that read or write image files (the other labels run the same code as the
-# build above, and its Vulkan tests run from the bundle next), then the report's quick run from
-# its bundle (tools/gpu-report.sh --bundle).
+# packages: the tests that read or write image files (the other labels run the same code as in
+# the build above, where they passed), then the report's quick run from its bundle
+# (tools/gpu-report.sh --bundle), which loads and runs every Vulkan test program of this build.
 cmake -S . -B build-noiio -G Ninja -DCMAKE_BUILD_TYPE=Release -DTRS_OPENIMAGEIO=OFF
 cmake --build build-noiio
 ctest --test-dir build-noiio --output-on-failure --timeout 600 -j "$(nproc)" -E '^gpu_report_quick$' \
