@@ -5,10 +5,6 @@
 # exit 99, a status no test expects. The cluster tests (a local Slurm driving the same tools) are
 # not run here. Without --all, four tests are left out to keep CI within
 # its time; --all runs every test.
-# LeakSanitizer's own stop-the-world tracer now and then crashes at a process's exit ("Tracer
-# caught signal 11", google/sanitizers#1353) with lavapipe's threads alive, after the test has
-# passed; that is no finding about the code. A test that failed only so is run once more and
-# must then pass; any other failure fails at once.
 #   tools/sanitize.sh [--all] [BUILD]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -30,15 +26,12 @@ if [ "${1:-}" = --all ]; then
   shift
 fi
 build=${1:-build-sanitize}
-export ASAN_OPTIONS="exitcode=99"
+# intercept_tls_get_addr=0: LeakSanitizer then leaves the dynamic TLS of libraries loaded at run
+# time (lavapipe's, and LLVM's within it) out of its scan. With it tracked, its stop-the-world
+# tracer crashed at exit ("Tracer caught signal 11", google/sanitizers#1353) in 7 of 9 runs of
+# VulkanSampler.SamplesFollowTheDensity after the test had passed; without, in none of 9.
+export ASAN_OPTIONS="exitcode=99:intercept_tls_get_addr=0"
 export UBSAN_OPTIONS="print_stacktrace=1"
 export LSAN_OPTIONS="suppressions=$PWD/fuzz/lsan.supp:print_suppressions=0"
 export LIGHTSAMPLER_REQUIRE_VULKAN=1  # Vulkan tests fail rather than skip without a device
-junit="$build/sanitize-junit.xml"
-if ctest --test-dir "$build" --output-on-failure --timeout 1200 -j "$(nproc)" -LE cluster \
-  --output-junit "$PWD/$junit" "${filter[@]}"; then
-  exit 0
-fi
-tracer_only=$(/usr/bin/python3 tools/common/lsan_tracer_crashes.py "$junit") || exit 1
-echo "Only LeakSanitizer's tracer crashed, in: $tracer_only; running those once more"
-ctest --test-dir "$build" --output-on-failure --timeout 1200 -R "^($tracer_only)\$"
+ctest --test-dir "$build" --output-on-failure --timeout 1200 -j "$(nproc)" -LE cluster "${filter[@]}"
