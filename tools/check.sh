@@ -2,14 +2,16 @@
 # The tests, at two depths.
 #
 #   bash tools/check.sh         installs the dependencies, builds everything in Release and runs the
-#                               whole test suite (ctest) but the GPU report's quick run and the
-#                               cluster tests; then builds the library alone, without its Vulkan
-#                               backend, and runs that configuration's tests. Minutes.
-#   bash tools/check.sh --full  then also installs the Python modules with pip into a fresh venv and
+#                               test suite (ctest) but its three longest tests, the GPU report's
+#                               quick run and the cluster tests. Within ten minutes on two cores.
+#   bash tools/check.sh --full  then also runs the three longest tests; builds the library alone,
+#                               without its Vulkan backend, and runs that configuration's tests;
+#                               installs the Python modules with pip into a fresh venv and
 #                               runs an example from it; submits animations and a study to a
 #                               one-node Slurm cluster of its own (label cluster); compares the
-#                               courtyard's punctual lights with Blender's Cycles; builds everything without OpenImageIO, runs
-#                               its tests and the GPU report's quick run from its bundle; builds
+#                               courtyard's punctual lights with Blender's Cycles; builds
+#                               everything without OpenImageIO, runs its tests and the GPU
+#                               report's quick run from its bundle; builds
 #                               everything with the sanitizers and runs the tests under them; and
 #                               fuzzes the parsers of user files for a fixed time each. CI runs this.
 set -euo pipefail
@@ -24,18 +26,26 @@ bash tools/setup-debian.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build
 export LIGHTSAMPLER_REQUIRE_VULKAN=1  # Vulkan tests fail rather than skip without a device
-# All but the GPU report's quick run, which --full runs from the report's bundle (minutes on a
-# CPU device; the tools it drives have tests of their own here).
-ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -E '^gpu_report_quick$' -LE cluster
-echo "check.sh: the cluster tests (a local Slurm) are left out here; tools/check.sh --full runs them"
+# The three longest tests, over three minutes of the suite's twelve on two cores: drivers of tools
+# that have tests of their own (trs-study; tools/figures), and one sampler made and dropped sixty
+# times. --full runs them, so that the default check stays within ten minutes, build included.
+long='trs_study|figures_quick|VulkanTest\.SixtySamplersComeAndGo'
+# All but those, the cluster tests, and the GPU report's quick run, which --full runs from the
+# report's bundle (minutes on a CPU device; the tools it drives have tests of their own here).
+ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -E "^(gpu_report_quick|$long)\$" -LE cluster
+if ! $full; then
+  echo "check.sh: left out here, run by tools/check.sh --full: the cluster tests (a local Slurm)," \
+    "the longest tests ($long), the CPU-only build, the builds without OpenImageIO and with the" \
+    "sanitizers, the fuzzers"
+  exit 0
+fi
+
+ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -R "^($long)\$"
 # The library alone, CPU backend only: it must build, pass its tests and install without Vulkan.
 cmake -S . -B build-cpu-only -G Ninja -DCMAKE_BUILD_TYPE=Release -DLIGHTSAMPLER_VULKAN=OFF \
   -DLIGHTSAMPLER_BUILD_TOOLS=OFF
 cmake --build build-cpu-only
 ctest --test-dir build-cpu-only --output-on-failure --timeout 600 -j "$(nproc)"
-if ! $full; then
-  exit 0
-fi
 
 # The README's Python install line in a fresh venv, offline, then the variance example from it.
 rm -rf build-pip/venv
