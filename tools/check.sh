@@ -2,9 +2,10 @@
 # The tests, at two depths.
 #
 #   bash tools/check.sh         installs the dependencies, builds everything in Release and runs the
-#                               test suite (ctest) but its three longest tests, the GPU report's
-#                               quick run and the cluster tests. Within ten minutes on two cores.
-#   bash tools/check.sh --full  then also runs the three longest tests; builds the library alone,
+#                               test suite (ctest) but its three longest tests, the real assets'
+#                               renders, the GPU report's quick run and the cluster tests. Within
+#                               ten minutes on two cores.
+#   bash tools/check.sh --full  then also runs those tests and renders; builds the library alone,
 #                               without its Vulkan backend, and runs that configuration's tests;
 #                               installs the Python modules with pip into a fresh venv and
 #                               runs an example from it; submits animations and a study to a
@@ -26,17 +27,18 @@ bash tools/setup-debian.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build
 export LIGHTSAMPLER_REQUIRE_VULKAN=1  # Vulkan tests fail rather than skip without a device
-# The three longest tests, over three minutes of the suite's twelve on two cores: drivers of tools
-# that have tests of their own (trs-study; tools/figures), and one sampler made and dropped sixty
-# times. --full runs them, so that the default check stays within ten minutes, build included.
-long='trs_study|figures_quick|VulkanTest\.SixtySamplersComeAndGo'
+# Run by --full alone, so that the default check stays within ten minutes on two cores, build
+# included: the three longest tests, over three minutes of the suite's twelve (drivers of tools
+# that have tests of their own, trs-study and tools/figures, and one sampler made and dropped
+# sixty times), and the real assets' render cases (the shipped and material scenes' stay).
+long='trs_study|figures_quick|VulkanTest\.SixtySamplersComeAndGo|render\.real-.*'
 # All but those, the cluster tests, and the GPU report's quick run, which --full runs from the
 # report's bundle (minutes on a CPU device; the tools it drives have tests of their own here).
 ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -E "^(gpu_report_quick|$long)\$" -LE cluster
 if ! $full; then
   echo "check.sh: left out here, run by tools/check.sh --full: the cluster tests (a local Slurm)," \
-    "the longest tests ($long), the CPU-only build, the builds without OpenImageIO and with the" \
-    "sanitizers, the fuzzers"
+    "the longest tests and the real assets' renders ($long), the CPU-only build, the builds" \
+    "without OpenImageIO and with the sanitizers, the fuzzers"
   exit 0
 fi
 
