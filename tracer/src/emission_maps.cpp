@@ -30,6 +30,9 @@ TextureRef emission_mapping(const Scene& scene, const Material& material) {
 /// See EmissionMap::coverage.
 std::vector<float> coverage(const Scene& scene, const Material& material, const EmissionMap& e) {
   if (!material.alpha_tested() || !material.base_color_texture.same_mapping(e.mapping)) return {};
+  const TextureRef& base = material.base_color_texture;
+  if (!base.present() || scene.textures[std::size_t(base.texture)].alpha.empty())  // the factor's alpha alone
+    return std::vector<float>(std::size_t(e.width) * e.height, opacity_at(scene, material, glm::vec2(0.0f)));
   constexpr int kGrid = 4;
   std::vector<float> share(std::size_t(e.width) * e.height);
   for (std::uint32_t y = 0; y < e.height; ++y) {

@@ -120,10 +120,11 @@ Vertices with_face_normals(const Vertices& shared) {
   return flat;
 }
 
-/// Appends `values`, or as many `fallback`s, to a mesh attribute that some primitive has.
+/// Appends `values`, or as many `fallback`s where there are none, to a mesh attribute that some
+/// primitive has.
 template <class T>
-void append(std::vector<T>& attribute, bool scene_has, const std::optional<std::vector<T>>& values,
-            std::size_t count, T fallback) {
+void append(std::vector<T>& attribute, bool scene_has, const std::vector<T>* values, std::size_t count,
+            T fallback) {
   if (!scene_has) return;
   if (values)
     attribute.insert(attribute.end(), values->begin(), values->end());
@@ -164,10 +165,10 @@ void read_geometry(const Document& document, Scene& scene) {
         const std::uint32_t base = document.vertex_base(mesh.positions.size(), v.positions.size());
         const std::size_t count = v.positions.size();
         mesh.positions.insert(mesh.positions.end(), v.positions.begin(), v.positions.end());
-        append(mesh.normals, any.normals, v.normals, count, glm::vec3(0.0f));
-        append(mesh.tangents, any.tangents, v.tangents, count, glm::vec4(0.0f));
+        append(mesh.normals, any.normals, v.normals ? &*v.normals : nullptr, count, glm::vec3(0.0f));
+        append(mesh.tangents, any.tangents, v.tangents ? &*v.tangents : nullptr, count, glm::vec4(0.0f));
         for (std::size_t set = 0; set < kUvSets; ++set)
-          append(mesh.uvs[set], any.uv_sets[set], std::optional(v.uvs[set]), count, glm::vec2(0.0f));
+          append(mesh.uvs[set], any.uv_sets[set], &v.uvs[set], count, glm::vec2(0.0f));
         for (const std::uint32_t corner : v.corners) mesh.indices.push_back(base + corner);
         mesh.materials.insert(mesh.materials.end(), v.corners.size() / 3, material);
       });
