@@ -251,4 +251,16 @@ TEST(NormalMap, ASunOnANormalMappedFloorGivesTheBentNormalsAnswer) {
   }
 }
 
+// A map read through a UV set that no primitive has (every UV (0, 0), no tangent frame) leaves
+// the normal as it is.
+TEST(NormalMap, AMapThroughAnAbsentUvSetLeavesTheNormal) {
+  const QuadOverPlane bench(kCpuSampler, [](Scene& scene) {
+    normal_map_the_floor(scene, false);
+    scene.materials[1].normal_texture.uv_set = 1;
+  });
+  ASSERT_TRUE(bench.scene.mesh.uvs[1].empty());
+  const glm::dvec3 flat = sunlit(bench, {0, 0, 1}), mapped = sunlit(bench, bent({0, -1, 0}));
+  expect_every_strategy(bench, flat, &mapped, {StrategyKind::uniform});
+}
+
 }  // namespace

@@ -14,7 +14,7 @@ T interpolate(const std::vector<T>& values, const std::uint32_t* v, float b1, fl
 /// The unit tangent and bitangent of the normal map's +X and +Y at a point of shading normal
 /// `n`: the file's tangents, else the directions in which the map's u grows and its v falls
 /// (glTF's v runs down the image, +Y up it), from the triangle's positions and UVs. Both are
-/// made orthogonal to `n`; none where the UVs are degenerate.
+/// made orthogonal to `n`; none where the UVs are degenerate or absent.
 std::optional<std::array<glm::vec3, 2>> tangent_frame(const Scene& scene, const TextureRef& map,
                                                       const std::uint32_t* v, float b1, float b2,
                                                       glm::vec3 n) {
@@ -28,6 +28,7 @@ std::optional<std::array<glm::vec3, 2>> tangent_frame(const Scene& scene, const 
     const glm::vec3 p0 = mesh.positions[v[0]];
     const glm::vec3 dp1 = mesh.positions[v[1]] - p0, dp2 = mesh.positions[v[2]] - p0;
     const std::vector<glm::vec2>& uvs = mesh.uvs[map.uv_set];
+    if (uvs.empty()) return std::nullopt;  // a set no primitive has: every UV (0, 0)
     const glm::vec2 uv0 = map.transform(uvs[v[0]]);
     const glm::vec2 du1 = map.transform(uvs[v[1]]) - uv0, du2 = map.transform(uvs[v[2]]) - uv0;
     const float det = du1.x * du2.y - du1.y * du2.x;
