@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
 # The tests, at two depths.
 #
-#   bash tools/check.sh         installs the dependencies, builds everything in Release and runs the
-#                               test suite (ctest) but its three longest tests, the real assets'
-#                               renders, the GPU report's quick run and the cluster tests. Within
-#                               ten minutes on two cores.
-#   bash tools/check.sh --full  then also runs those tests and renders; builds the library alone,
+#   bash tools/check.sh         installs the dependencies, builds everything in Release but the
+#                               benchmark programs and runs the test suite (ctest) but its three
+#                               longest tests, the real assets' renders, the GPU report's quick run
+#                               and the cluster tests. Within ten minutes on two cores.
+#   bash tools/check.sh --full  then also builds the benchmark programs (trs-bench, trs-dataset) and
+#                               runs their tests, those tests and renders; builds the library alone,
 #                               without its Vulkan backend, and runs that configuration's tests;
 #                               installs the Python modules with pip into a fresh venv and
 #                               runs an example from it; submits animations and a study to a
@@ -24,7 +25,9 @@ case "${1:-}" in
 esac
 
 bash tools/setup-debian.sh
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+# The benchmark programs and their tests (with tools/figures --quick) are --full's: a minute of
+# the default check's build.
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DTRS_BUILD_BENCHMARKS=OFF
 cmake --build build
 export LIGHTSAMPLER_REQUIRE_VULKAN=1  # Vulkan tests fail rather than skip without a device
 # Run by --full alone, so that the default check stays within ten minutes on two cores, build
@@ -36,13 +39,15 @@ long='trs_study|figures_quick|VulkanTest\.SixtySamplersComeAndGo|render\.real-.*
 # report's bundle (minutes on a CPU device; the tools it drives have tests of their own here).
 ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -E "^(gpu_report_quick|$long)\$" -LE cluster
 if ! $full; then
-  echo "check.sh: left out here, run by tools/check.sh --full: the cluster tests (a local Slurm)," \
-    "the longest tests and the real assets' renders ($long), the CPU-only build, the builds" \
-    "without OpenImageIO and with the sanitizers, the fuzzers"
+  echo "check.sh: left out here, run by tools/check.sh --full: the benchmark programs and their" \
+    "tests, the cluster tests (a local Slurm), the longest tests and the real assets' renders" \
+    "($long), the CPU-only build, the builds without OpenImageIO and with the sanitizers, the fuzzers"
   exit 0
 fi
 
-ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -R "^($long)\$"
+cmake -S . -B build -DTRS_BUILD_BENCHMARKS=ON
+cmake --build build
+ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -R "^($long|trs_bench_.*)\$"
 # The library alone, CPU backend only: it must build, pass its tests and install without Vulkan.
 cmake -S . -B build-cpu-only -G Ninja -DCMAKE_BUILD_TYPE=Release -DLIGHTSAMPLER_VULKAN=OFF \
   -DLIGHTSAMPLER_BUILD_TOOLS=OFF
