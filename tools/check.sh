@@ -31,10 +31,12 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DTRS_BUILD_BENCHMARKS=O
 cmake --build build
 export LIGHTSAMPLER_REQUIRE_VULKAN=1  # Vulkan tests fail rather than skip without a device
 # Run by --full alone, so that the default check stays within ten minutes on two cores, build
-# included: the three longest tests, over three minutes of the suite's twelve (drivers of tools
-# that have tests of their own, trs-study and tools/figures, and one sampler made and dropped
-# sixty times), and the real assets' render cases (the shipped and material scenes' stay).
-long='trs_study|figures_quick|VulkanTest\.SixtySamplersComeAndGo|render\.real-.*'
+# included: the five longest tests, over four minutes of the suite's thirteen (drivers of tools
+# that have tests of their own, trs-study and tools/figures; samplers made and dropped sixty
+# times, and ten times holding an eighth of the device's memory each; outputs beyond 128 MiB),
+# and the real assets' render cases (the shipped and material scenes' stay).
+long='trs_study|figures_quick|VulkanTest\.SixtySamplersComeAndGo|VulkanTest\.DroppedSamplersGiveTheirDeviceMemoryBack'
+long+='|VulkanSampler\.OutputsBeyond128MiBAnd65535Workgroups|render\.real-.*'
 # All but those, the cluster tests, and the GPU report's quick run, which --full runs from the
 # report's bundle (minutes on a CPU device; the tools it drives have tests of their own here).
 ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -E "^(gpu_report_quick|$long)\$" -LE cluster
