@@ -16,8 +16,9 @@ What it does to each asset (scenes/real/README.md lists it per asset):
 - Emission textures are kept byte for byte at their native size. Base-colour and
   metallic-roughness textures are downscaled to at most NON_EMISSIVE_MAX texels a side and stored
   as JPEG. Normal, occlusion, clearcoat, sheen and transmission textures and extensions are
-  dropped (trs-render reads none of them), as are TANGENT attributes, animations and the asset's
-  own cameras where a staging camera replaces them.
+  dropped (the corpus measures light sampling: it keeps what lights the scene and its base
+  colours, small), as are TANGENT attributes, animations and the asset's own cameras where a
+  staging camera replaces them. A gzipped .glb is read unzipped.
 - A lone object is scaled to a set size, turned about the vertical, set on a grey plinth in a
   closed grey room (Lambertian, base colour 0.5), and seen by a new perspective camera. Whole
   scenes keep their own geometry and get a camera.
@@ -26,6 +27,7 @@ What it does to each asset (scenes/real/README.md lists it per asset):
 """
 
 import argparse
+import gzip
 import io
 import json
 import math
@@ -52,6 +54,12 @@ SOURCES = {
         "repo": "gkjohnson/3d-demo-data",
         "commit": "a79b5400ba8ed5bdeffebc10ce5adeecda7c3ebc",
         "note": "models collected from Sketchfab for three.js demos, each with its source and licence",
+    },
+    "pmndrs-postprocessing": {
+        "mirror": "pmndrs+postprocessing",
+        "repo": "pmndrs/postprocessing",
+        "commit": "71a02f5120f9137fc6abe5c79d23b3d3dd17e68f",
+        "note": "the postprocessing library's manual site (gh-pages branch), with the models its demos use",
     },
     "babylon": {
         "mirror": "BabylonJS+MeshesLibrary",
@@ -180,6 +188,18 @@ ASSETS = {
         },
         "camera": {"eye_dir": [0.35, 0.25, 1.0], "distance": 1.2, "yfov": 50.0, "target_height": 0.25},
     },
+    "spaceship-corridor": {
+        "source": "pmndrs-postprocessing",
+        # The .glb beside it is the same file (same blob once unzipped) but over the snapshot's 4 MiB.
+        "path": "manual/models/spaceship-corridor/spaceship-corridor.glb.gz",
+        "title": "Spaceship Corridor",
+        "author": "the_table (https://sketchfab.com/the_table)",
+        "licence": "CC BY 4.0",
+        "kind": "scene",
+        "strength": 150.0,
+        # Inside, looking down the corridor: its walls, floor and ceiling fill the frame.
+        "camera": {"eye": [0.0, 1.55, -6.6], "target": [0.0, 1.35, 0.0], "yfov": 60.0},
+    },
 }
 
 ROOM = {"width": 4.0, "depth": 4.0, "height": 2.7, "object_z": -0.6, "plinth_size": 0.6,
@@ -208,8 +228,12 @@ def load_asset(mirrors, spec):
     raw = git_show(mirrors, spec["source"], spec["path"])
     if raw is None:
         sys.exit(f"{spec['path']}: not in the snapshot")
-    folder = os.path.dirname(spec["path"])
-    if spec["path"].endswith(".glb"):
+    path = spec["path"]
+    if path.endswith(".gz"):
+        raw = gzip.decompress(raw)
+        path = path[:-3]
+    folder = os.path.dirname(path)
+    if path.endswith(".glb"):
         magic, version, length = struct.unpack("<4sII", raw[:12])
         assert magic == b"glTF" and version == 2
         jlen, jtype = struct.unpack("<II", raw[12:20])
@@ -235,7 +259,7 @@ def load_asset(mirrors, spec):
             ext = {"image/png": "png", "image/jpeg": "jpg"}[im["mimeType"]]
             tex_names = [t["name"] for t in gltf.get("textures", []) if t.get("source") == i and t.get("name")]
             name = im.get("name") or (tex_names[0] if tex_names else
-                                           os.path.splitext(os.path.basename(spec["path"]))[0] + f"_image{i}")
+                                           os.path.splitext(os.path.basename(path))[0] + f"_image{i}")
             name = os.path.splitext(name)[0] + "." + ext
             images.append((name, data))
     return gltf, buffers, images
@@ -753,7 +777,10 @@ def stage(name, spec, mirrors, out_root):
         target = anchor + np.array(cam["target"])
         scene["nodes"].append(add_camera(gltf, eye, target, cam["yfov"]))
         placed = f"scaled by {scale:.6g} to {spec['size']} m, turned {spec.get('yaw', 0.0)} degrees"
-    else:
+    elif "eye" in cam:  # a camera inside the scene, placed in its own coordinates
+        scene["nodes"].append(add_camera(gltf, cam["eye"], cam["target"], cam["yfov"]))
+        placed = "kept at its own scale"
+    else:  # a camera outside, looking at the scene's bounds
         centre = (corners.max(0) + corners.min(0)) / 2
         lo, hi = corners.min(0), corners.max(0)
         centre[1] = lo[1] + cam.get("target_height", 0.5) * (hi[1] - lo[1])
