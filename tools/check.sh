@@ -34,9 +34,12 @@ export LIGHTSAMPLER_REQUIRE_VULKAN=1  # Vulkan tests fail rather than skip witho
 # included: the five longest tests, over four minutes of the suite's thirteen (drivers of tools
 # that have tests of their own, trs-study and tools/figures; samplers made and dropped sixty
 # times, and ten times holding an eighth of the device's memory each; outputs beyond 128 MiB),
-# and the real assets' render cases (the shipped and material scenes' stay).
+# and the real assets' render cases (the shipped and material scenes' stay, but for the
+# experimental strategies').
 long='trs_study|figures_quick|VulkanTest\.SixtySamplersComeAndGo|VulkanTest\.DroppedSamplersGiveTheirDeviceMemoryBack'
 long+='|VulkanSampler\.OutputsBeyond128MiBAnd65535Workgroups|render\.real-.*'
+# The experimental strategies' render cases too (their draws have statistical tests of their own).
+long+='|render\..*\.(texel|tree-texel)'
 # All but those, the cluster tests, and the GPU report's quick run, which --full runs from the
 # report's bundle (minutes on a CPU device; the tools it drives have tests of their own here).
 ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -E "^(gpu_report_quick|$long)\$" -LE cluster
