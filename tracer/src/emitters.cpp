@@ -31,22 +31,17 @@ Emitters::Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampl
     if (const std::optional<std::uint32_t> map = maps_->map_of(scene.mesh.materials[t])) add_light(t, *map);
   }
   setup_.emission_ms = ms_since(start);
-  rebuild_sampler(sampler);
-}
-
-Emitters::~Emitters() = default;
-
-void Emitters::rebuild_sampler(const lightsampler::SamplerOptions& sampler) {
-  const auto start = std::chrono::steady_clock::now();
-  sampler_.reset();  // the old one's memory (a GPU's) before the new one's
   if (count() == 0) return;  // punctual lights alone: nothing to sample by texels
+  const auto sampler_start = std::chrono::steady_clock::now();
   sampler_ = lightsampler::make_sampler(mesh(), maps_->views(), sampler);
-  integrate();  // its first count, in the set-up (the same integrals after a rebuild)
+  integrate();  // its first count, in the set-up
   const lightsampler::SamplerSetup sampler_setup = sampler_->setup();
-  setup_.sampler_ms += ms_since(start) - sampler_setup.subdivision_ms;
+  setup_.sampler_ms = ms_since(sampler_start) - sampler_setup.subdivision_ms;
   setup_.subdivision_ms = sampler_setup.subdivision_ms;
   setup_.sampler_parts = sampler_setup.parts;
 }
+
+Emitters::~Emitters() = default;
 
 void Emitters::integrate() {
   // The counting pass alone gives every light's integral; after update_map it counts the

@@ -77,23 +77,13 @@ lightsampler::SamplerOptions sampler_options(const RenderSettings& settings) {
   lightsampler::SamplerOptions options = settings.sampler;
   options.cpu.threads = settings.threads;
   // The subdivision speeds up drawing lights; the other strategies only read integrals and texels.
-  if (!draws_point_lights(settings.strategy)) options.refinement = {};
+  // `auto` measures on the sampler `ris` draws from, where the texture decides, and renders with
+  // it: built once, subdivided, rather than once for the measure and again for `ris`.
+  if (!draws_point_lights(settings.strategy) && settings.strategy.kind != StrategyKind::automatic)
+    options.refinement = {};
   // The cost model splits for the lights a pass draws.
   if (options.refinement.cost_model) options.refinement.frame_samples = settings.strategy.lights;
   return options;
-}
-
-/// The strategy that renders; `auto`'s light sampler is subdivided once `auto` chose a
-/// strategy that draws point lights (the emitters are built without the subdivision for it,
-/// which the others do not use).
-StrategyChoice choose(Emitters& emitters, const RenderSettings& settings) {
-  StrategyChoice choice = choose_strategy(emitters, settings.strategy);
-  if (settings.strategy.kind == StrategyKind::automatic && draws_point_lights(choice.options)) {
-    RenderSettings chosen = settings;
-    chosen.strategy = choice.options;
-    emitters.rebuild_sampler(sampler_options(chosen));
-  }
-  return choice;
 }
 
 /// The lights of a still must emit something; an animation's may be dark in some frames.
@@ -116,8 +106,6 @@ struct Renderer::State {
   Clock::time_point geometry_built = Clock::now();
   Emitters emitters;
   Clock::time_point emitters_built = Clock::now();
-  /// The light sampler's set-up so far: `auto` may build it again before the strategy.
-  double sampler_setup_ms = emitters.setup().sampler_ms + emitters.setup().subdivision_ms;
   StrategyChoice choice;
   std::unique_ptr<LightStrategy> strategy;
   Clock::time_point strategy_built = Clock::now();
@@ -140,7 +128,7 @@ struct Renderer::State {
         frame(f),
         geometry(s),
         emitters(s, sampler_options(r), f, animation_seconds(f, r.fps)),
-        choice(choose(lit(emitters, s), r)),
+        choice(choose_strategy(lit(emitters, s), r.strategy)),
         strategy(make_light_strategy(emitters, choice.options)),
         camera(scene_camera(s), r.width, r.height) {}
 };
@@ -255,10 +243,9 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   const auto ms = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double, std::milli>(b - a).count();
   };
-  const double rebuilt_ms = lights.sampler_ms + lights.subdivision_ms - s.sampler_setup_ms;
   result.setup = {1000.0 * (s.scene.load_seconds - s.scene.texture_decode_seconds), 1000.0 * s.scene.texture_decode_seconds,
                   ms(s.start, s.geometry_built), lights.emission_ms, lights.sampler_ms, lights.subdivision_ms,
-                  ms(s.emitters_built, s.strategy_built) - rebuilt_ms, lights.sampler_parts};
+                  ms(s.emitters_built, s.strategy_built), lights.sampler_parts};
   result.first_pass_seconds = s.first_pass_seconds;
   result.strategy = s.strategy->name();
   result.strategy_choice = s.choice;

@@ -107,9 +107,6 @@ class Emitters {
   const lightsampler::Sampler& sampler() const { return *sampler_; }
   /// The same, to draw point lights with (`trs`, `auto`'s measure).
   lightsampler::Sampler& sampler() { return *sampler_; }
-  /// Builds the light sampler again with `sampler`'s options (a subdivision decided after the
-  /// emitters were built: `auto`'s); the lights and their integrals stay as they are.
-  void rebuild_sampler(const lightsampler::SamplerOptions& sampler);
   const EmittersSetup& setup() const { return setup_; }
 
  private:
