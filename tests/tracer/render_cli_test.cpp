@@ -18,6 +18,8 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "lightsampler/refinement.h"
@@ -780,35 +782,56 @@ TEST_F(RenderCliTest, PlanPrintsACommandPerChunkAndRendersNothing) {
   }
 }
 
-/// An `sbatch` for the tests, first on the PATH while it lives: it keeps its arguments and its
-/// batch script in DIR/args and DIR/script, prints a job id as --parsable asks, and with --wait
-/// runs the array's tasks itself, one after the other, as Slurm would on one node (but task
-/// `skipped`), failing if one failed.
+/// An `sbatch` for the tests, first on the PATH while it lives: it keeps its arguments (NUL after
+/// each) and its batch script in DIR/args and DIR/script, prints a job id as --parsable asks, and
+/// with --wait runs the array's tasks itself, one after the other, as Slurm would on one node (but
+/// task `skipped`), failing if one failed.
 class StandInSbatch {
  public:
   StandInSbatch(const fs::path& dir, int skipped = -1)
       : dir_(dir), path_("PATH", (dir.string() + ":" + std::getenv("PATH")).c_str()) {
     write_file(dir / "sbatch", "#!/bin/sh\n"
-                               "dir=$(dirname \"$0\"); echo \"$@\" > \"$dir/args\"\n"
+                               "dir=$(dirname \"$0\"); printf '%s\\0' \"$@\" > \"$dir/args\"\n"
                                "for script; do :; done; cp \"$script\" \"$dir/script\"; echo 4242\n"
                                "case \" $* \" in *\" --wait \"*) ;; *) exit 0 ;; esac\n"
-                               "tasks=$(sed -n 's/^#SBATCH --array=0-//p' \"$script\"); status=0\n"
+                               "tasks=$(printf '%s\\n' \"$@\" | sed -n 's/^--array=0-//p'); status=0\n"
                                "for i in $(seq 0 \"$tasks\"); do\n"
                                "  [ \"$i\" = " + std::to_string(skipped) + " ] && { status=1; continue; }\n"
                                "  SLURM_ARRAY_TASK_ID=$i sh \"$dir/script\" > /dev/null 2>&1 || status=1\n"
                                "done\nexit $status\n");
     fs::permissions(dir / "sbatch", fs::perms::owner_all);
   }
-  std::string args() const { return read_file(dir_ / "args"); }
+  /// Its arguments, the batch script's path last; none where it did not run.
+  std::vector<std::string> args() const {
+    std::vector<std::string> words;
+    std::istringstream in(read_file(dir_ / "args"));
+    for (std::string word; std::getline(in, word, '\0');) words.push_back(word);
+    return words;
+  }
   std::string script() const { return read_file(dir_ / "script"); }
+  /// Runs the batch script as Slurm runs an array's task `task`: sh, SLURM_ARRAY_TASK_ID set.
+  RunResult run_task(int task) const {
+    const trs_test::ScopedEnvironment id("SLURM_ARRAY_TASK_ID", std::to_string(task).c_str());
+    const pid_t pid = trs_test::spawn_process({"/bin/sh", (dir_ / "script").string()}, dir_ / "task.out", dir_ / "task.err");
+    return {trs_test::wait_process(pid), read_file(dir_ / "task.out"), read_file(dir_ / "task.err")};
+  }
 
  private:
   fs::path dir_;
   trs_test::ScopedEnvironment path_;
 };
 
+/// The regular files under `dir`, by their paths relative to it.
+std::set<std::string> files_under(const fs::path& dir) {
+  std::set<std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.is_regular_file()) files.insert(fs::relative(entry.path(), dir).string());
+  return files;
+}
+
 // --submit slurm: one array task per chunk, each the --plan command with --resume, run by this
-// trs-render's absolute path; --sbatch's words reach sbatch; the job id alone on standard output.
+// trs-render's absolute path; sbatch's options, then --sbatch's words, on its command line; the
+// job id alone on standard output.
 TEST_F(RenderCliTest, SubmitHandsTheChunksToSlurmAsOneArray) {
   fs::create_directories(file("bin"));
   const StandInSbatch sbatch(file("bin"));
@@ -817,16 +840,103 @@ TEST_F(RenderCliTest, SubmitHandsTheChunksToSlurmAsOneArray) {
   ASSERT_EQ(result.status, 0) << result.err;
   EXPECT_EQ(result.out, "4242\n");
   EXPECT_NE(result.err.find("Slurm job 4242: frames 0:4 in 3 tasks"), std::string::npos) << result.err;
-  EXPECT_NE(sbatch.args().find("--parsable --partition=gpu --time=10 "), std::string::npos) << sbatch.args();
+  std::vector<std::string> args = sbatch.args();
+  ASSERT_FALSE(args.empty());
+  EXPECT_EQ(fs::path(args.back()).parent_path(), file("s"));  // the batch script, beside the outputs
+  args.pop_back();
+  EXPECT_EQ(args, (std::vector<std::string>{"--parsable", "--job-name=trs-render", "--array=0-2",
+                                            "--output=" + file("s").string() + "/trs-render-%A_%a.log",
+                                            "--partition=gpu", "--time=10"}));
   const std::string script = sbatch.script();
-  EXPECT_NE(script.find("#SBATCH --array=0-2\n"), std::string::npos) << script;
-  EXPECT_NE(script.find("#SBATCH --output=" + file("s").string() + "/trs-render-%A_%a.log\n"), std::string::npos) << script;
+  EXPECT_EQ(script.rfind("#!/bin/sh\ncase \"$SLURM_ARRAY_TASK_ID\" in\n", 0), 0u) << script;
+  EXPECT_EQ(script.find("#SBATCH"), std::string::npos) << script;
   for (const char* range : {"0:1", "2:3", "4:4"})
     EXPECT_NE(script.find(" --resume --frames " + std::string(range) + " ;;"), std::string::npos) << script;
   EXPECT_NE(script.find(") exec /"), std::string::npos) << "not an absolute path: " << script;
   EXPECT_EQ(script.find("--submit"), std::string::npos) << script;
   EXPECT_EQ(script.find("--sbatch"), std::string::npos) << script;
   EXPECT_EQ(listing(), (std::set<std::string>{"bin", "s"}));  // the batch script is gone
+}
+
+// --sbatch's words reach sbatch without a shell: words that a shell would run something from are
+// refused, naming the character, before anything runs; quoted words arrive whole, as they are.
+TEST_F(RenderCliTest, SbatchWordsReachSbatchWithoutAShell) {
+  fs::create_directories(file("bin"));
+  const StandInSbatch sbatch(file("bin"));
+  const std::string canary = file("pwned").string();
+  const auto submit = [&](const std::string& words) {
+    return run(tiny(kAnimated, {"--frames", "0:1", "--submit", "slurm", "--sbatch", words, "--out",
+                                file("s/f.%04d.exr").string()}));
+  };
+  for (const auto& [words, named] : std::vector<std::pair<std::string, std::string>>{
+           {"--partition=x; touch " + canary, "\";\" at character 14 is a shell operator"},
+           {"--partition=x $(touch " + canary + ")", "\"$\" at character 15 would expand in a shell"},
+           {"--partition=x `touch " + canary + "`", "\"`\" at character 15 would expand"},
+           {"--partition=x | touch " + canary, "\"|\" at character 15 is a shell operator"},
+           {"--partition=x && touch " + canary, "\"&\" at character 15"},
+           {"--partition=x >" + canary, "\">\" at character 15"},
+           {"--comment=\"$(touch " + canary + ")\"", "\"$\" at character 12"},
+           {"--partition=x\ntouch " + canary, "a control character (newline) at character 14"},
+           {"--comment='a", "\"'\" at character 11 opens a quote that is never closed"}}) {
+    SCOPED_TRACE(words);
+    const RunResult result = submit(words);
+    EXPECT_EQ(result.status, 2) << result.err;
+    EXPECT_NE(result.err.find("trs-render: error: --sbatch: " + named), std::string::npos) << result.err;
+    EXPECT_EQ(listing(), std::set<std::string>{"bin"});  // no canary, no output folder
+    EXPECT_EQ(files_under(file("bin")), std::set<std::string>{"sbatch"});  // sbatch never ran
+  }
+  const RunResult quoted = submit("--comment='a b' '--comment=$(touch " + canary + ")' --exclude=node[1-3] --comment=\\;");
+  ASSERT_EQ(quoted.status, 0) << quoted.err;
+  const std::vector<std::string> args = sbatch.args();
+  ASSERT_GE(args.size(), 5u);
+  EXPECT_EQ(std::vector<std::string>(args.end() - 5, args.end() - 1),
+            (std::vector<std::string>{"--comment=a b", "--comment=$(touch " + canary + ")", "--exclude=node[1-3]",
+                                      "--comment=;"}));
+  EXPECT_EQ(listing(), (std::set<std::string>{"bin", "s"}));
+}
+
+// An output folder that a shell would read more into is quoted in the batch script: run by sh as
+// Slurm runs a task, the task renders into that folder and creates nothing else. A control
+// character in a path is refused, naming the option; a backslash in the folder too, which would
+// give every task's log one name.
+TEST_F(RenderCliTest, ABatchScriptHoldsAnyOutputFolderQuoted) {
+  fs::create_directories(file("bin"));
+  const StandInSbatch sbatch(file("bin"));
+  const std::string canary = file("pwned").string();
+  for (const std::string& folder : {std::string("it's \"quoted\""), "$(touch " + canary + ")", "`touch " + canary + "`",
+                                    std::string("a b;c|d&e"), std::string("100%")}) {
+    SCOPED_TRACE(folder);
+    fs::remove_all(file("o"));
+    const fs::path out = file("o") / folder / "f.%04d.exr";
+    const RunResult submitted = run(tiny(kAnimated, {"--frames", "0:0", "--submit", "slurm", "--out", out.string()}));
+    ASSERT_EQ(submitted.status, 0) << submitted.err;
+    std::string pattern;  // sbatch's --output: Slurm reads % as a replacement symbol, %% as %
+    for (const char c : out.parent_path().string()) pattern += c == '%' ? "%%" : std::string(1, c);
+    const std::vector<std::string> args = sbatch.args();
+    EXPECT_NE(std::find(args.begin(), args.end(), "--output=" + pattern + "/trs-render-%A_%a.log"), args.end());
+    const RunResult task = sbatch.run_task(0);
+    EXPECT_EQ(task.status, 0) << task.err;
+    EXPECT_EQ(files_under(file("o")),
+              std::set<std::string>{fs::relative(out.parent_path() / "f.0000.exr", file("o")).string()});
+    EXPECT_EQ(listing(), (std::set<std::string>{"bin", "o"}));  // no canary
+    read_render(out.parent_path() / "f.0000.exr", 16, 9);
+  }
+  fs::remove_all(file("o"));
+  for (const auto& [option, path, named] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"--out", file("o/a\nb/f.%04d.exr").string(), "newline"},
+           {"--stats", file("o/s\r.%04d.json").string(), "carriage return"}}) {
+    std::vector<std::string> args = tiny(kAnimated, {"--frames", "0:0", "--submit", "slurm", option, path});
+    if (option != "--out") args.insert(args.end(), {"--out", file("o/f.%04d.exr").string()});
+    const RunResult refused = run(args);
+    EXPECT_EQ(refused.status, 2) << refused.err;
+    EXPECT_NE(refused.err.find("trs-render: error: " + option + ": \""), std::string::npos) << refused.err;
+    EXPECT_NE(refused.err.find("holds a control character (" + named + ")"), std::string::npos) << refused.err;
+  }
+  const RunResult backslash = run(tiny(kAnimated, {"--frames", "0:0", "--submit", "slurm", "--out", file("o/a\\b/f.%04d.exr").string()}));
+  EXPECT_EQ(backslash.status, 1) << backslash.err;
+  EXPECT_NE(backslash.err.find("--out: the folder \"" + file("o/a\\b").string() + "\" holds a backslash"), std::string::npos)
+      << backslash.err;
+  EXPECT_EQ(listing(), std::set<std::string>{"bin"});
 }
 
 // --wait: the tasks' frames equal a render of the range here, bit for bit; a task that did not

@@ -52,7 +52,7 @@ struct RenderOptions {
   /// --submit slurm: hand the frames to Slurm as one job array instead of rendering.
   struct Submission {
     std::int64_t chunk = 1;  ///< frames per array task
-    std::string sbatch;      ///< --sbatch: sbatch's own options, as the shell splits them
+    std::vector<std::string> sbatch;  ///< --sbatch: sbatch's own options, split by split_shell_words()
     bool wait = false;       ///< --wait: block until the array ends
   };
   std::optional<Submission> submit;
@@ -66,6 +66,10 @@ std::filesystem::path output(const RenderOptions& options, const std::filesystem
 
 /// Every output path that options ask for, `out` first (when set: Python's render() may write none).
 std::vector<std::filesystem::path> outputs(const RenderOptions& options);
+
+/// Whether every output of animation frame `frame` is there under its own name: a frame --resume
+/// skips (partial outputs do not count).
+bool frame_written(const RenderOptions& options, std::int64_t frame);
 
 /// Exit status of a command line that is wrong (as opposed to inputs that are).
 inline constexpr int kUsageError = 2;
