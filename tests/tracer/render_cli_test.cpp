@@ -782,43 +782,44 @@ TEST_F(RenderCliTest, PlanPrintsACommandPerChunkAndRendersNothing) {
   }
 }
 
-/// An `sbatch` for the tests, first on the PATH while it lives: it keeps its arguments (NUL after
-/// each) and its batch script in DIR/args and DIR/script, prints a job id as --parsable asks, and
-/// with --wait runs the array's tasks itself, one after the other, as Slurm would on one node (but
-/// task `skipped`), failing if one failed.
+/// Slurm's sbatch, stood in for by tests/support/slurm/sbatch while this lives: first on the
+/// PATH, it records each call in DIR, prints a job id as --parsable asks, and with --wait runs
+/// the array's tasks itself (but task `skipped`).
 class StandInSbatch {
  public:
-  StandInSbatch(const fs::path& dir, int skipped = -1)
-      : dir_(dir), path_("PATH", (dir.string() + ":" + std::getenv("PATH")).c_str()) {
-    write_file(dir / "sbatch", "#!/bin/sh\n"
-                               "dir=$(dirname \"$0\"); printf '%s\\0' \"$@\" > \"$dir/args\"\n"
-                               "for script; do :; done; cp \"$script\" \"$dir/script\"; echo 4242\n"
-                               "case \" $* \" in *\" --wait \"*) ;; *) exit 0 ;; esac\n"
-                               "tasks=$(printf '%s\\n' \"$@\" | sed -n 's/^--array=0-//p'); status=0\n"
-                               "for i in $(seq 0 \"$tasks\"); do\n"
-                               "  [ \"$i\" = " + std::to_string(skipped) + " ] && { status=1; continue; }\n"
-                               "  SLURM_ARRAY_TASK_ID=$i sh \"$dir/script\" > /dev/null 2>&1 || status=1\n"
-                               "done\nexit $status\n");
-    fs::permissions(dir / "sbatch", fs::perms::owner_all);
+  explicit StandInSbatch(const fs::path& dir, int skipped = -1)
+      : dir_(dir),
+        path_("PATH", (std::string(TRS_STAND_IN_SLURM) + ":" + std::getenv("PATH")).c_str()),
+        record_("SBATCH_RECORD", dir.c_str()),
+        skipped_("SBATCH_SKIPPED_TASK", std::to_string(skipped).c_str()) {
+    fs::create_directories(dir);
   }
-  /// Its arguments, the batch script's path last; none where it did not run.
+
+  std::size_t calls() const {
+    std::size_t calls = 0;
+    for (const auto& entry : fs::directory_iterator(dir_)) calls += entry.path().extension() == ".args";
+    return calls;
+  }
+  /// The arguments of the last call, the batch script's path last.
   std::vector<std::string> args() const {
     std::vector<std::string> words;
-    std::istringstream in(read_file(dir_ / "args"));
+    std::istringstream in(read_file(last(".args")));
     for (std::string word; std::getline(in, word, '\0');) words.push_back(word);
     return words;
   }
-  std::string script() const { return read_file(dir_ / "script"); }
-  /// Runs the batch script as Slurm runs an array's task `task`: sh, SLURM_ARRAY_TASK_ID set.
+  std::string script() const { return read_file(last(".script")); }
+  /// Runs the last batch script as Slurm runs an array's task `task`: sh, SLURM_ARRAY_TASK_ID set.
   RunResult run_task(int task) const {
     const trs_test::ScopedEnvironment id("SLURM_ARRAY_TASK_ID", std::to_string(task).c_str());
-    const pid_t pid = trs_test::spawn_process({"/bin/sh", (dir_ / "script").string()}, dir_ / "task.out", dir_ / "task.err");
+    const pid_t pid = trs_test::spawn_process({"/bin/sh", last(".script").string()}, dir_ / "task.out", dir_ / "task.err");
     return {trs_test::wait_process(pid), read_file(dir_ / "task.out"), read_file(dir_ / "task.err")};
   }
 
  private:
+  fs::path last(const char* suffix) const { return dir_ / (std::to_string(calls() - 1) + suffix); }
+
   fs::path dir_;
-  trs_test::ScopedEnvironment path_;
+  trs_test::ScopedEnvironment path_, record_, skipped_;
 };
 
 /// The regular files under `dir`, by their paths relative to it.
@@ -833,8 +834,7 @@ std::set<std::string> files_under(const fs::path& dir) {
 // trs-render's absolute path; sbatch's options, then --sbatch's words, on its command line; the
 // job id alone on standard output.
 TEST_F(RenderCliTest, SubmitHandsTheChunksToSlurmAsOneArray) {
-  fs::create_directories(file("bin"));
-  const StandInSbatch sbatch(file("bin"));
+  const StandInSbatch sbatch(file("sbatch"));
   const RunResult result = run(tiny(kAnimated, {"--frames", "0:4", "--chunk", "2", "--submit", "slurm", "--sbatch",
                                                 "--partition=gpu --time=10", "--out", file("s/f.%04d.exr").string()}));
   ASSERT_EQ(result.status, 0) << result.err;
@@ -855,14 +855,13 @@ TEST_F(RenderCliTest, SubmitHandsTheChunksToSlurmAsOneArray) {
   EXPECT_NE(script.find(") exec /"), std::string::npos) << "not an absolute path: " << script;
   EXPECT_EQ(script.find("--submit"), std::string::npos) << script;
   EXPECT_EQ(script.find("--sbatch"), std::string::npos) << script;
-  EXPECT_EQ(listing(), (std::set<std::string>{"bin", "s"}));  // the batch script is gone
+  EXPECT_EQ(listing(), (std::set<std::string>{"s", "sbatch"}));  // the batch script is gone
 }
 
 // --sbatch's words reach sbatch without a shell: words that a shell would run something from are
 // refused, naming the character, before anything runs; quoted words arrive whole, as they are.
 TEST_F(RenderCliTest, SbatchWordsReachSbatchWithoutAShell) {
-  fs::create_directories(file("bin"));
-  const StandInSbatch sbatch(file("bin"));
+  const StandInSbatch sbatch(file("sbatch"));
   const std::string canary = file("pwned").string();
   const auto submit = [&](const std::string& words) {
     return run(tiny(kAnimated, {"--frames", "0:1", "--submit", "slurm", "--sbatch", words, "--out",
@@ -882,8 +881,8 @@ TEST_F(RenderCliTest, SbatchWordsReachSbatchWithoutAShell) {
     const RunResult result = submit(words);
     EXPECT_EQ(result.status, 2) << result.err;
     EXPECT_NE(result.err.find("trs-render: error: --sbatch: " + named), std::string::npos) << result.err;
-    EXPECT_EQ(listing(), std::set<std::string>{"bin"});  // no canary, no output folder
-    EXPECT_EQ(files_under(file("bin")), std::set<std::string>{"sbatch"});  // sbatch never ran
+    EXPECT_EQ(listing(), std::set<std::string>{"sbatch"});  // no canary, no output folder
+    EXPECT_EQ(sbatch.calls(), 0u);
   }
   const RunResult quoted = submit("--comment='a b' '--comment=$(touch " + canary + ")' --exclude=node[1-3] --comment=\\;");
   ASSERT_EQ(quoted.status, 0) << quoted.err;
@@ -892,7 +891,7 @@ TEST_F(RenderCliTest, SbatchWordsReachSbatchWithoutAShell) {
   EXPECT_EQ(std::vector<std::string>(args.end() - 5, args.end() - 1),
             (std::vector<std::string>{"--comment=a b", "--comment=$(touch " + canary + ")", "--exclude=node[1-3]",
                                       "--comment=;"}));
-  EXPECT_EQ(listing(), (std::set<std::string>{"bin", "s"}));
+  EXPECT_EQ(listing(), (std::set<std::string>{"s", "sbatch"}));
 }
 
 // An output folder that a shell would read more into is quoted in the batch script: run by sh as
@@ -900,8 +899,7 @@ TEST_F(RenderCliTest, SbatchWordsReachSbatchWithoutAShell) {
 // character in a path is refused, naming the option; a backslash in the folder too, which would
 // give every task's log one name.
 TEST_F(RenderCliTest, ABatchScriptHoldsAnyOutputFolderQuoted) {
-  fs::create_directories(file("bin"));
-  const StandInSbatch sbatch(file("bin"));
+  const StandInSbatch sbatch(file("sbatch"));
   const std::string canary = file("pwned").string();
   for (const std::string& folder : {std::string("it's \"quoted\""), "$(touch " + canary + ")", "`touch " + canary + "`",
                                     std::string("a b;c|d&e"), std::string("100%")}) {
@@ -918,7 +916,7 @@ TEST_F(RenderCliTest, ABatchScriptHoldsAnyOutputFolderQuoted) {
     EXPECT_EQ(task.status, 0) << task.err;
     EXPECT_EQ(files_under(file("o")),
               std::set<std::string>{fs::relative(out.parent_path() / "f.0000.exr", file("o")).string()});
-    EXPECT_EQ(listing(), (std::set<std::string>{"bin", "o"}));  // no canary
+    EXPECT_EQ(listing(), (std::set<std::string>{"o", "sbatch"}));  // no canary
     read_render(out.parent_path() / "f.0000.exr", 16, 9);
   }
   fs::remove_all(file("o"));
@@ -936,7 +934,7 @@ TEST_F(RenderCliTest, ABatchScriptHoldsAnyOutputFolderQuoted) {
   EXPECT_EQ(backslash.status, 1) << backslash.err;
   EXPECT_NE(backslash.err.find("--out: the folder \"" + file("o/a\\b").string() + "\" holds a backslash"), std::string::npos)
       << backslash.err;
-  EXPECT_EQ(listing(), std::set<std::string>{"bin"});
+  EXPECT_EQ(listing(), std::set<std::string>{"sbatch"});
 }
 
 // --wait: the tasks' frames equal a render of the range here, bit for bit; a task that did not
@@ -944,17 +942,16 @@ TEST_F(RenderCliTest, ABatchScriptHoldsAnyOutputFolderQuoted) {
 TEST_F(RenderCliTest, SubmitWaitRendersTheFramesAsHereAndNamesTheMissingOnes) {
   const std::vector<std::string> local = tiny(kAnimated, {"--frames", "0:3", "--out", file("here.%04d.exr").string()});
   ASSERT_EQ(run(local).status, 0);
-  fs::create_directories(file("bin"));
   const std::vector<std::string> submit = tiny(kAnimated, {"--frames", "0:3", "--chunk", "2", "--submit", "slurm", "--wait",
                                                      "--out", file("s/f.%04d.exr").string()});
   {
-    const StandInSbatch sbatch(file("bin"), 1);
+    const StandInSbatch sbatch(file("sbatch"), 1);
     const RunResult failed = run(submit);
     EXPECT_EQ(failed.status, 1) << failed.err;
     EXPECT_NE(failed.err.find("task 1 left frames 2:3 unwritten"), std::string::npos) << failed.err;
   }
   const auto written = fs::last_write_time(file("s/f.0000.exr"));
-  const StandInSbatch sbatch(file("bin"));
+  const StandInSbatch sbatch(file("sbatch"));
   const RunResult again = run(submit);
   ASSERT_EQ(again.status, 0) << again.err;
   EXPECT_EQ(fs::last_write_time(file("s/f.0000.exr")), written);  // --resume: not rendered again
