@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <string.h>
 
 #include <algorithm>
 #include <chrono>
@@ -525,6 +526,7 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
         tiny(kAnimated, {"--frames", "two", "--out", file("out.%04d.exr").string()}),
         tiny(kAnimated, {"--plan", "--out", file("out.exr").string()}),
         tiny(kAnimated, {"--resume", "--out", file("out.exr").string()}),
+        tiny(kAnimated, {"--save-partial", "--out", file("out.exr").string()}),
         tiny(kAnimated, {"--submit", "slurm", "--out", file("out.exr").string()}),
         tiny(kAnimated, {"--frames", "0:2", "--submit", "pbs", "--out", file("out.%04d.exr").string()}),
         tiny(kAnimated, {"--frames", "0:2", "--wait", "--out", file("out.%04d.exr").string()}),
@@ -1026,48 +1028,65 @@ TEST_F(RenderCliTest, ASequenceFrameThatIsNotAnImageIsNamed) {
   expect_failure_naming(args, file("clip.1.png"));
 }
 
-enum class SigintState { default_action, caught, exited };
+enum class HandlerState { default_action, caught, exited };
 
-/// Whether a running process has a SIGINT handler installed, from Linux's /proc.
-SigintState sigint_state(pid_t pid) {
+/// Whether a running process has a handler installed for `signal`, from Linux's /proc.
+HandlerState handler_state(pid_t pid, int signal) {
   std::ifstream in("/proc/" + std::to_string(pid) + "/status");
   std::string line;
   while (std::getline(in, line)) {
     if (line.rfind("State:", 0) == 0 && line.find('Z') != std::string::npos)
-      return SigintState::exited;
+      return HandlerState::exited;
     if (line.rfind("SigCgt:", 0) == 0) {
       const unsigned long long mask = std::stoull(line.substr(7), nullptr, 16);
-      return mask & (1ull << (SIGINT - 1)) ? SigintState::caught : SigintState::default_action;
+      return mask & (1ull << (signal - 1)) ? HandlerState::caught : HandlerState::default_action;
     }
   }
-  return SigintState::exited;
+  return HandlerState::exited;
 }
 
-// 6. Ctrl-C: the frames done are saved, the run says it was interrupted, status 130.
-TEST_F(RenderCliTest, InterruptSavesTheFramesDone) {
-  const fs::path exr = file("long.exr"), json = file("long.json");
-  const pid_t pid = start({kScene.string(), "--width", "64", "--height", "36", "--spp", "100000",
-                           "--lights", "1000", "--max-depth", "2", "--threads", "2", "--out",
-                           exr.string(), "--stats", json.string()});
-  ASSERT_GT(pid, 0);
-  // The handler is installed once the scene is loaded and the render starts (earlier, Ctrl-C
-  // just ends the process); then a frame of 64 x 36 takes milliseconds.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  SigintState state = SigintState::default_action;
-  while ((state = sigint_state(pid)) == SigintState::default_action &&
-         std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  if (state != SigintState::caught) {
-    ::kill(pid, SIGKILL);
-    const RunResult failed = finish(pid);
-    FAIL() << "the render did not start: status " << failed.status << "\n" << failed.err;
+/// Runs that a stop signal ends: SIGINT (Ctrl-C), SIGTERM (Slurm's time limit, scancel,
+/// preemption) or SIGHUP.
+class RenderCliStopTest : public RenderCliTest {
+ protected:
+  /// trs-render on `args`, sent `signal` once it has rendered for `rendering`: the handler is
+  /// installed once the run starts (earlier, the signal just ends the process), and from then on a
+  /// pass of these small images takes milliseconds. None (a failure recorded) if it never started.
+  std::optional<RunResult> stopped(const std::vector<std::string>& args, int signal,
+                                   std::chrono::milliseconds rendering) {
+    const pid_t pid = start(args);
+    if (pid <= 0) return std::nullopt;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    HandlerState state = HandlerState::default_action;
+    while ((state = handler_state(pid, signal)) == HandlerState::default_action &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (state != HandlerState::caught) {
+      ::kill(pid, SIGKILL);
+      const RunResult failed = finish(pid);
+      ADD_FAILURE() << "the render did not start: status " << failed.status << "\n" << failed.err;
+      return std::nullopt;
+    }
+    std::this_thread::sleep_for(rendering);
+    EXPECT_EQ(::kill(pid, signal), 0);
+    return finish(pid);
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  ASSERT_EQ(::kill(pid, SIGINT), 0);
-  const RunResult result = finish(pid);
+};
 
-  EXPECT_EQ(result.status, 130) << result.err;
-  EXPECT_NE(result.err.find("interrupted"), std::string::npos) << result.err;
+class RenderCliSignalTest : public RenderCliStopTest, public ::testing::WithParamInterface<int> {};
+
+// 6. Ctrl-C, SIGTERM and SIGHUP: the passes done are saved with their stats, the run says it was
+// interrupted, status 128 + the signal.
+TEST_P(RenderCliSignalTest, SavesThePassesDone) {
+  const int signal = GetParam();
+  const fs::path exr = file("long.exr"), json = file("long.json");
+  const std::optional<RunResult> result =
+      stopped({kScene.string(), "--width", "64", "--height", "36", "--spp", "100000", "--lights", "1000",
+               "--max-depth", "2", "--threads", "2", "--out", exr.string(), "--stats", json.string()},
+              signal, std::chrono::milliseconds(1500));
+  ASSERT_TRUE(result);
+  EXPECT_EQ(result->status, 128 + signal) << result->err;
+  EXPECT_NE(result->err.find("interrupted; saved "), std::string::npos) << result->err;
   EXPECT_EQ(listing(), (std::set<std::string>{"long.exr", "long.json"}));  // no temporaries
   const auto image = read_render(exr, 64, 36);
   ASSERT_TRUE(image);
@@ -1078,6 +1097,46 @@ TEST_F(RenderCliTest, InterruptSavesTheFramesDone) {
   EXPECT_GE(frames, 1u);
   EXPECT_LE(frames, 99999u);
   EXPECT_EQ(stats["settings"]["spp"], 100000);
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, RenderCliSignalTest, ::testing::Values(SIGINT, SIGTERM, SIGHUP),
+                         [](const ::testing::TestParamInfo<int>& info) { return std::string(sigabbrev_np(info.param)); });
+
+// A sequence stopped in a frame keeps the frames written; the frame under way is dropped, or with
+// --save-partial written under partial names with stats that say so. --resume renders that frame
+// again and then removes its partial outputs.
+TEST_F(RenderCliStopTest, ASequenceKeepsTheFrameUnderWayOnlyWithSavePartial) {
+  const auto sequence = [&](const char* spp, const char* more) {
+    std::vector<std::string> args =
+        tiny(kAnimated, {"--frames", "0:1", "--out", file("f.%04d.exr").string(), "--stats",
+                         file("f.%04d.json").string(), "--preview", file("f.%04d.png").string(), more});
+    args.insert(args.end(), {"--spp", spp});  // after tiny()'s: the last wins
+    return args;
+  };
+  const std::optional<RunResult> dropped = stopped(sequence("100000", "--quiet"), SIGTERM, std::chrono::milliseconds(1500));
+  ASSERT_TRUE(dropped);
+  EXPECT_EQ(dropped->status, 143) << dropped->err;
+  EXPECT_NE(dropped->err.find("interrupted; frame 0 dropped (--save-partial keeps its passes)"), std::string::npos)
+      << dropped->err;
+  EXPECT_EQ(listing(), std::set<std::string>{});
+
+  const std::optional<RunResult> kept = stopped(sequence("100000", "--save-partial"), SIGTERM, std::chrono::milliseconds(1500));
+  ASSERT_TRUE(kept);
+  EXPECT_EQ(kept->status, 143) << kept->err;
+  EXPECT_NE(kept->err.find(" spp of frame 0 as " + file("f.0000.partial.exr").string()), std::string::npos) << kept->err;
+  EXPECT_EQ(listing(), (std::set<std::string>{"f.0000.partial.exr", "f.0000.partial.json", "f.0000.partial.png"}));
+  read_render(file("f.0000.partial.exr"), 16, 9);
+  const nlohmann::json stats = read_json(file("f.0000.partial.json"));
+  EXPECT_EQ(stats["interrupted"], true);
+  EXPECT_EQ(stats["frame"], 0);
+  EXPECT_GE(stats["frames"].get<unsigned>(), 1u);
+
+  const RunResult resumed = run(sequence("2", "--resume"));
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_EQ(listing(), (std::set<std::string>{"f.0000.exr", "f.0000.json", "f.0000.png", "f.0001.exr", "f.0001.json",
+                                              "f.0001.png"}));
+  EXPECT_EQ(read_json(file("f.0000.json"))["interrupted"], false);
+  EXPECT_EQ(read_json(file("f.0000.json"))["frames"], 2);
 }
 
 }  // namespace

@@ -238,7 +238,7 @@ struct LightSamplerOptions {
   void finish(lightsampler::SamplerOptions& sampler) const { sampler.backend = kBackends.at(backend); }
 };
 
-/// --frames and --fps, and how a sequence runs: --resume, --plan, --submit, --chunk.
+/// --frames and --fps, and how a sequence runs: --resume, --save-partial, --plan, --submit, --chunk.
 struct AnimationOptions {
   std::string frames;
   std::int64_t chunk = 1;
@@ -254,6 +254,10 @@ struct AnimationOptions {
         ->check(CLI::PositiveNumber & kFiniteNonNegative)
         ->capture_default_str();
     app.add_flag("--resume", options.resume, "--frames: skip the frames whose outputs are all there");
+    app.add_flag("--save-partial", options.save_partial,
+                 "--frames: when stopped (Ctrl-C, SIGTERM, SIGHUP), write the passes done of the frame under way, "
+                 "each output with .partial before its extension (out.0007.partial.exr); --resume renders that "
+                 "frame again");
     app.add_flag("--plan", plan,
                  "--frames: print one trs-render command per chunk of frames (for GNU parallel or a Slurm "
                  "array) and render nothing");
@@ -290,7 +294,7 @@ struct AnimationOptions {
     if (plan && options.submit) return "--plan and --submit are two ways to run the frames: give one";
     if (UsageError error = misplaced(app, {"--sbatch", "--wait"}, options.submit.has_value(), "belongs to --submit"))
       return error;
-    if (UsageError error = misplaced(app, {"--resume", "--plan", "--submit", "--chunk"},
+    if (UsageError error = misplaced(app, {"--resume", "--save-partial", "--plan", "--submit", "--chunk"},
                                      options.frames.has_value(), "belongs to --frames"))
       return error;
     return plan || options.submit ? control_character_in_values(app) : std::nullopt;
@@ -472,6 +476,10 @@ std::variant<RenderOptions, int> parse_render_options(int argc, char** argv) {
 std::filesystem::path output(const RenderOptions& options, const std::filesystem::path& path, std::int64_t frame) {
   if (!options.frames || path.empty()) return path;
   return path.parent_path() / FramePattern(path.filename().string()).format(frame);
+}
+
+std::filesystem::path partial_output(const std::filesystem::path& file) {
+  return file.parent_path() / (file.stem().string() + ".partial" + file.extension().string());
 }
 
 std::vector<std::filesystem::path> outputs(const RenderOptions& options) {

@@ -47,6 +47,9 @@ struct RenderOptions {
   /// A sequence: one image per animation frame (each with its own seeds; --spp and --time each).
   std::optional<FrameRange> frames;
   bool resume = false;  ///< skip the frames whose outputs are all written
+  /// --save-partial: a sequence stopped by `cancel` writes the frame under way as it is, each
+  /// output under partial_output()'s name.
+  bool save_partial = false;
   /// --plan: print a command per chunk of this many frames instead of rendering.
   std::optional<std::int64_t> plan_chunk;
   /// --submit slurm: hand the frames to Slurm as one job array instead of rendering.
@@ -63,6 +66,11 @@ struct RenderOptions {
 /// itself for a still.
 std::filesystem::path output(const RenderOptions& options, const std::filesystem::path& path,
                              std::int64_t frame);
+
+/// Where a sequence stopped by `cancel` writes `file` (an output() of the frame under way) with
+/// --save-partial: ".partial" before its extension (f.0007.exr: f.0007.partial.exr), a name that
+/// --resume does not take for the frame's.
+std::filesystem::path partial_output(const std::filesystem::path& file);
 
 /// Every output path that options ask for, `out` first (when set: Python's render() may write none).
 std::vector<std::filesystem::path> outputs(const RenderOptions& options);
