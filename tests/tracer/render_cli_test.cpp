@@ -531,7 +531,8 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
         tiny(kAnimated, {"--frames", "0:2", "--submit", "pbs", "--out", file("out.%04d.exr").string()}),
         tiny(kAnimated, {"--frames", "0:2", "--wait", "--out", file("out.%04d.exr").string()}),
         tiny(kAnimated, {"--frames", "0:2", "--sbatch", "--hold", "--out", file("out.%04d.exr").string()}),
-        tiny(kAnimated, {"--frames", "0:2", "--plan", "--submit", "slurm", "--out", file("out.%04d.exr").string()})}) {
+        tiny(kAnimated, {"--frames", "0:2", "--plan", "--submit", "slurm", "--out", file("out.%04d.exr").string()}),
+        tiny(kAnimated, {"--frames", "0:2", "--plan", "--out", file("a\nb.%04d.exr").string()})}) {
     const RunResult result = run(args);
     EXPECT_EQ(result.status, 2) << result.err;
     EXPECT_NE(result.err.find("trs-render: error: "), std::string::npos) << result.err;
