@@ -180,7 +180,7 @@ const char* const kDisplayOptions[] = {"ocio_config", "ocio_colorspace", "displa
 
 /// Keywords that describe a run of trs-render rather than a renderer, besides kDisplayOptions.
 const char* const kRunOptions[] = {"out", "stats", "preview", "variance", "emitter_mask", "frames",
-                                   "resume", "plan", "chunk", "time", "exposure"};
+                                   "resume", "save_partial", "plan", "chunk", "time", "exposure"};
 
 /// A renderer driven frame by frame, for notebooks that show the image converge.
 class PyRenderer {
@@ -316,8 +316,9 @@ PYBIND11_MODULE(trs_render, m) {
         "Outputs named by out, preview, stats, variance or emitter_mask are written as trs-render writes them.");
   m.def("submit", &submit, py::arg("scene"),
         "submit(scene, frames='A:B', out=PATTERN, **options) -> job id: trs-render --submit slurm, the "
-        "frames as one Slurm job array (chunk=, sbatch='ARGS', wait=True as trs-render's options); "
-        "program= names the trs-render the nodes run (default: the one on the PATH).");
+        "frames as one Slurm job array (chunk=, sbatch='ARGS', wait=True as trs-render's options: sbatch's "
+        "words split by quotes and backslashes, nothing expanded or run); program= names the trs-render the "
+        "nodes run (default: the one on the PATH). A bad option, sbatch= text or path is a ValueError.");
   m.def("emitter_mask", &emitter_mask, py::arg("scene"),
         "emitter_mask(scene, **options) -> float32 (height, width): each pixel's fraction of camera "
         "samples whose first hit is an emitter (spp of them, default 16).");
@@ -331,8 +332,8 @@ PYBIND11_MODULE(trs_render, m) {
       .def(py::init<const py::object&, std::int64_t, const py::kwargs&>(), py::arg("scene"), py::kw_only(),
            py::arg("frame") = 0,
            "Renderer(scene, frame=0, **options): trs-render's options, less those of a run (out, stats, "
-           "preview, variance, emitter_mask, frames, resume, plan, chunk, time, exposure, ocio_config, "
-           "ocio_colorspace, display, view).")
+           "preview, variance, emitter_mask, frames, resume, save_partial, plan, chunk, time, exposure, "
+           "ocio_config, ocio_colorspace, display, view).")
       .def("render_frame", [](PyRenderer& r) { return r.render_passes(1); },
            "Renders one frame more; returns the mean image so far, float32 (height, width, 3).")
       .def("render_frames", &PyRenderer::render_passes, py::arg("count") = py::none(),

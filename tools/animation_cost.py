@@ -17,6 +17,7 @@ import argparse
 import csv
 import json
 import math
+import shlex
 import statistics
 import subprocess
 import sys
@@ -98,7 +99,7 @@ def measure(args, backend, strategy, work):
         run += ["--refine", args.refine]
     done = subprocess.run(run, capture_output=True, text=True)
     if done.returncode != 0:
-        sys.exit(f"animation_cost: {' '.join(run)} failed:\n{done.stderr}")
+        sys.exit(f"animation_cost: {shlex.join(run)} failed:\n{done.stderr}")
     stats = [json.loads((work / f"s.{f:04d}.json").read_text()) for f in args.frames[1:]]
     row = {"backend": backend, "strategy": strategy, "refine": args.refine or "default", "frames": len(stats)}
     for part in PARTS:

@@ -39,6 +39,7 @@ status 1 beyond it). Needs Debian's python3 with python3-numpy and python3-openi
 """
 import argparse
 import csv
+import shlex
 import subprocess
 import sys
 import tempfile
@@ -181,7 +182,7 @@ def read_rgb(path):
 def run(command):
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
-        sys.exit(f"cycles_compare: {' '.join(map(str, command))} failed:\n{result.stdout[-2000:]}{result.stderr}")
+        sys.exit(f"cycles_compare: {shlex.join(map(str, command))} failed:\n{result.stdout[-2000:]}{result.stderr}")
 
 
 COMPARISON_OPTIONS = ("render", "blender", "diffuse", "width", "height", "spp", "cycles_spp", "max_depth")

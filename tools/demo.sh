@@ -12,6 +12,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ "${1:-}" = --animation ]; then
+  # SECONDS goes to trs-render's --time and into the labels of ffmpeg's filter, whose syntax
+  # it must not reach: a positive decimal number, checked before the set-up and the build.
+  seconds=${2:-1.5}
+  if ! [[ $seconds =~ ^([0-9]+\.?[0-9]*|\.[0-9]+)$ && $seconds =~ [1-9] ]]; then
+    echo "tools/demo.sh: error: --animation SECONDS: \"$seconds\" is not a positive decimal number (1.5, say)" >&2
+    exit 2
+  fi
   bash tools/setup-debian.sh --video
 else
   bash tools/setup-debian.sh
@@ -22,7 +29,7 @@ cmake --build build --target trs-render trs-imgdiff trs-sample trs_render_python
 out=build/demo
 mkdir -p "$out"
 if [ "${1:-}" = --animation ]; then
-  exec bash tools/demo/animation.sh "$out/animation" "${2:-1.5}"
+  exec bash tools/demo/animation.sh "$out/animation" "$seconds"
 fi
 
 scene=scenes/neon-sign

@@ -17,6 +17,7 @@ A configuration is STRATEGY or STRATEGY+OPTION=VALUE+..., as trs-study takes the
 import argparse
 import csv
 import json
+import shlex
 import statistics
 import subprocess
 import sys
@@ -53,7 +54,7 @@ def measure(render, scene, settings, config, args, work):
         command[2:2] = ["--settings", str(settings)]
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
-        sys.exit(f"setup_cost: {' '.join(command)} failed:\n{result.stderr}")
+        sys.exit(f"setup_cost: {shlex.join(command)} failed:\n{result.stderr}")
     s = json.loads(stats.read_text())
     row = {f"{part}_ms": s["setup_ms"][part] for part in PARTS}
     row["setup_ms"] = sum(s["setup_ms"][part] for part in PARTS if part != "first_frame")

@@ -268,8 +268,8 @@ start() {
   dir=$(cd "$dir" && pwd -P)
   # munged's socket path must fit a sockaddr_un (108 bytes); slurm.conf takes no quoting.
   [ ${#dir} -le 80 ] || die "DIR is too long for munged's socket path (${#dir} > 80): $dir"
-  [[ $dir != *[[:space:]\#,=\(\)]* ]] ||
-    die "DIR holds a character slurm.conf cannot take (space, #, comma, =, parenthesis): $dir"
+  [[ $dir != *[[:space:][:cntrl:]\#,=\(\)]* ]] ||
+    die "DIR holds a character slurm.conf cannot take (space, control character, #, comma, =, parenthesis): $dir"
   for daemon in munged slurmctld slurmd; do
     pidfile="$dir/$daemon.pid"
     [ $daemon = munged ] && pidfile="$dir/munge/munged.pid"
@@ -291,7 +291,8 @@ start() {
   write_slurm_conf
   start_slurm
   wait_idle
-  echo "export SLURM_CONF=$dir/slurm.conf" > "$dir/env.sh"
+  # Quoted: the caller runs the line (eval, or sourcing env.sh), and DIR may hold $ ` ; ' or ".
+  printf 'export SLURM_CONF=%q\n' "$dir/slurm.conf" > "$dir/env.sh"
   trap - EXIT INT TERM
   cat "$dir/env.sh"
 }

@@ -1,14 +1,16 @@
 """Against a real Slurm, the one-node cluster tests/cluster/with_slurm.sh starts around this file
 (ctest label `cluster`): an animation through trs-render --submit slurm --wait equals a render of
 the same frames here, bit for bit; a task cancelled before it ran leaves its frames, which a
-second submission renders without redoing the others; trs_render.submit() returns the job id;
-and a two-strategy study through trs-study --submit slurm measures what the same study here
-does, times and machines aside.
+second submission renders without redoing the others; a task cancelled while it renders, with
+--save-partial, leaves the passes done as a partial frame, which the next submission renders
+whole; trs_render.submit() returns the job id; and a two-strategy study through trs-study
+--submit slurm measures what the same study here does, times and machines aside.
 
 Environment: SLURM_CONF (with_slurm.sh), TRS_RENDER and TRS_STUDY (the programs), TRS_SCENES (the
 scenes folder), PYTHONPATH with the trs_render module."""
 
 import csv
+import json
 import os
 import subprocess
 import time
@@ -54,6 +56,16 @@ def wait_until_gone(job, seconds=180):
     pytest.fail(f"Slurm job {job} still listed after {seconds} s")
 
 
+def wait_until_running(job, seconds=120):
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        listed = subprocess.run(["squeue", "-h", "-j", job, "-o", "%T"], capture_output=True, text=True)
+        if listed.stdout.strip() == "RUNNING":
+            return
+        time.sleep(0.2)
+    pytest.fail(f"Slurm job {job} not running after {seconds} s")
+
+
 def expect_frames_as_here(tmp_path, submitted, frames):
     render_here(tmp_path / "here" / "f.%04d.exr", f"{frames[0]}:{frames[-1]}")
     for f in frames:
@@ -85,6 +97,31 @@ def test_a_cancelled_task_is_rendered_by_the_next_submission_alone(tmp_path):
     assert again != job
     assert {f: (out / f"f.{f:04d}.exr").stat().st_mtime_ns for f in (0, 1, 3)} == written
     expect_frames_as_here(tmp_path, out, range(4))
+
+
+def test_a_task_cancelled_while_it_renders_keeps_its_passes_and_is_rendered_again(tmp_path):
+    out = tmp_path / "slurm"
+    stats_pattern = ["--stats", out / "f.%04d.json"]
+    # Far more passes than the seconds before scancel allow: the frame is under way when the
+    # task gets Slurm's SIGTERM, and saves what it has before KillWait's SIGKILL.
+    status, job, err = submit(out / "f.%04d.exr", "0:0", *stats_pattern, "--spp", "10000000", "--save-partial")
+    assert status == 0, err
+    wait_until_running(job)
+    time.sleep(4)  # the set-up, then passes of milliseconds each
+    subprocess.run(["scancel", job], check=True)
+    wait_until_gone(job)
+    log = (out / f"trs-render-{job}_0.log").read_text()
+    assert "interrupted; saved " in log and " spp of frame 0 as " in log, log
+    assert not (out / "f.0000.exr").exists()
+    assert np.isfinite(pixels(out / "f.0000.partial.exr")).all()
+    stats = json.loads((out / "f.0000.partial.json").read_text())
+    assert stats["interrupted"] is True and stats["frames"] >= 1, stats
+
+    status, again, err = submit(out / "f.%04d.exr", "0:0", *stats_pattern, "--wait")
+    assert status == 0, err
+    stats = json.loads((out / "f.0000.json").read_text())
+    assert stats["interrupted"] is False and stats["frames"] == 2, stats
+    assert sorted(p.name for p in out.glob("f.*")) == ["f.0000.exr", "f.0000.json"]
 
 
 def test_python_submit_returns_the_job_id(tmp_path):

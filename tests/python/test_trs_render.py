@@ -1,8 +1,11 @@
 """`import trs_render`: a render from Python equals trs-render's EXR for the same settings, bit for
-bit, whether in one call or frame by frame; options are trs-render's, checked by its parser."""
+bit, whether in one call or frame by frame; options are trs-render's, checked by its parser; and
+submit() hands a stand-in sbatch the words it was given, running none of them."""
 
 import importlib.util
 import json
+import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -15,6 +18,7 @@ import pytest
 import trs_render
 
 TINY = dict(width=32, height=18, spp=3, max_depth=2, lights=2000, seed=5, quiet=True)
+STAND_IN_SLURM = Path(__file__).resolve().parents[1] / "support" / "slurm"
 
 
 def scene(scenes):
@@ -183,3 +187,67 @@ def test_a_renderer_refuses_the_options_of_a_run(scenes):
         trs_render.Renderer(scene(scenes), out="x.exr")
     with pytest.raises(ValueError, match="view belongs to trs_render.render()"):
         trs_render.Renderer(scene(scenes), view="Filmic")
+
+
+@pytest.fixture
+def stand_in_sbatch(tmp_path, monkeypatch):
+    """tests/support/slurm/sbatch first on the PATH: the folder where it records its calls."""
+    record = tmp_path / "sbatch"
+    record.mkdir()
+    monkeypatch.setenv("PATH", f"{STAND_IN_SLURM}:{os.environ['PATH']}")
+    monkeypatch.setenv("SBATCH_RECORD", str(record))
+    return record
+
+
+def submit(scenes, trs_render_exe, out, frames="0:1", **options):
+    return trs_render.submit(scenes / "video-wall" / "video-wall.gltf", frames=frames, out=out, program=trs_render_exe,
+                             **TINY, **options)
+
+
+@pytest.mark.parametrize("words, named", [
+    ("--partition=x; touch {canary}", '";" at character 14 is a shell operator'),
+    ("--partition=x $(touch {canary})", '"$" at character 15 would expand in a shell'),
+    ("--partition=x `touch {canary}`", '"`" at character 15 would expand in a shell'),
+    ("--partition=x && touch {canary}", '"&" at character 15'),
+    ('--comment="$(touch {canary})"', '"$" at character 12'),
+    ("--partition=x\ntouch {canary}", "a control character (newline) at character 14"),
+])
+def test_submit_refuses_sbatch_words_a_shell_would_run(tmp_path, stand_in_sbatch, scenes, trs_render_exe, words,
+                                                       named):
+    with pytest.raises(ValueError, match=re.escape("--sbatch: " + named)):
+        submit(scenes, trs_render_exe, tmp_path / "s" / "f.%04d.exr", sbatch=words.format(canary=tmp_path / "pwned"))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["sbatch"]
+    assert not list(stand_in_sbatch.iterdir())  # sbatch never ran
+
+
+def test_submit_hands_quoted_sbatch_words_over_whole(tmp_path, stand_in_sbatch, scenes, trs_render_exe):
+    canary = tmp_path / "pwned"
+    job = submit(scenes, trs_render_exe, tmp_path / "s" / "f.%04d.exr",
+                 sbatch=f"--comment='a b' '--comment=$(touch {canary})' --exclude=node[1-3]")
+    assert job == "4242"
+    args = (stand_in_sbatch / "0.args").read_text().split("\0")[:-1]
+    assert args[-4:-1] == ["--comment=a b", f"--comment=$(touch {canary})", "--exclude=node[1-3]"]
+    assert not canary.exists()
+
+
+@pytest.mark.parametrize("folder", ["it's \"quoted\"", "$(touch {canary})", "`touch {canary}`"])
+def test_the_batch_script_run_by_sh_renders_into_any_output_folder(tmp_path, stand_in_sbatch, scenes, trs_render_exe,
+                                                                   folder):
+    out = tmp_path / "o" / folder.format(canary=tmp_path / "pwned") / "f.%04d.exr"
+    submit(scenes, trs_render_exe, out, frames="0:0")
+    task = subprocess.run(["sh", stand_in_sbatch / "0.script"], capture_output=True, text=True,
+                          env={**os.environ, "SLURM_ARRAY_TASK_ID": "0"})
+    assert task.returncode == 0, task.stderr
+    assert [p for p in (tmp_path / "o").rglob("*") if p.is_file()] == [out.parent / "f.0000.exr"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["o", "sbatch"]
+
+
+def test_submit_refuses_a_path_with_a_control_character(tmp_path, stand_in_sbatch, scenes, trs_render_exe):
+    with pytest.raises(ValueError, match=r"--out: .* holds a control character \(newline\)"):
+        submit(scenes, trs_render_exe, tmp_path / "a\nb" / "f.%04d.exr")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["sbatch"]
+
+
+def test_save_partial_belongs_to_a_run():
+    with pytest.raises(ValueError, match="save_partial belongs to trs_render.render()"):
+        trs_render.Renderer(Path("unused.gltf"), save_partial=True)

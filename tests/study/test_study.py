@@ -1,13 +1,15 @@
 """trs-study end to end on a tiny study of the neon-sign scene: its plan, its CSV, and each
 image's relMSE against an independent computation (trs-imgdiff's, in C++), with and without the
-emitter mask; and its pictures' choices (bars for a single budget, crops among the lit pixels)
-on made-up results. Run by ctest with the paths of the tools."""
+emitter mask; its pictures' choices (bars for a single budget, crops among the lit pixels) on
+made-up results; and its submission to a stand-in sbatch, which nothing given to it runs. Run
+by ctest with the paths of the tools."""
 
 import argparse
 import csv
 import importlib.machinery
 import importlib.util
 import json
+import os
 import re
 import shlex
 import subprocess
@@ -20,10 +22,12 @@ from unittest import mock
 TOOLS = None  # set from the command line
 STRATEGIES = ["uniform", "power", "tree", "texel", "tree-texel", "trs", "ris"]  # trs-study's default
 SOURCE_STUDY = Path(__file__).resolve().parents[2] / "tools" / "trs-study" / "trs-study"
+SUPPORT = Path(__file__).resolve().parents[1] / "support"
 
 
-def study(*args, program=None):
-    return subprocess.run([sys.executable, program or TOOLS.study, *map(str, args)], capture_output=True, text=True)
+def study(*args, program=None, environment=None):
+    return subprocess.run([sys.executable, program or TOOLS.study, *map(str, args)], capture_output=True, text=True,
+                          env=environment)
 
 
 def study_module():
@@ -368,6 +372,111 @@ class Frames(unittest.TestCase):
         refused = study(self.scene, "--out", "unused", "--frames", "2:1", "--plan")
         self.assertEqual(refused.returncode, 2)
         self.assertIn("takes A:B", refused.stderr)
+
+
+
+def slurm_module():
+    """tools/common/slurm.py, as trs-study imports it from beside itself."""
+    sys.dont_write_bytecode = True
+    sys.path.insert(0, str(Path(TOOLS.study).parent))
+    import slurm
+    return slurm
+
+
+class ShellWords(unittest.TestCase):
+    """--sbatch's words against the table that trs-render's splitter is held to as well."""
+
+    def test_splits_as_the_table_says(self):
+        slurm = slurm_module()
+        for case in json.loads((SUPPORT / "shell_words.json").read_text())["cases"]:
+            with self.subTest(text=case["text"]):
+                if "words" in case:
+                    self.assertEqual(slurm.shell_words(case["text"]), case["words"])
+                    continue
+                with self.assertRaises(slurm.ShellWordsError) as refused:
+                    slurm.shell_words(case["text"])
+                self.assertEqual((refused.exception.character, refused.exception.position), (case["refused"], case["at"]))
+                self.assertIn(f" at character {case['at']}", str(refused.exception))
+
+
+# --sbatch texts that a shell would run `touch CANARY` from, and what the refusal names.
+HOSTILE_SBATCH = [("--partition=x; touch {canary}", '";" at character 14 is a shell operator'),
+                  ("--partition=x $(touch {canary})", '"$" at character 15 would expand in a shell'),
+                  ("--partition=x `touch {canary}`", '"`" at character 15 would expand in a shell'),
+                  ("--partition=x | touch {canary}", '"|" at character 15'),
+                  ("--partition=x && touch {canary}", '"&" at character 15'),
+                  ('--comment="$(touch {canary})"', '"$" at character 12'),
+                  ("--partition=x\ntouch {canary}", "a control character (newline) at character 14"),
+                  ("--comment='a", "\"'\" at character 11 opens a quote that is never closed")]
+
+
+class Submit(unittest.TestCase):
+    """--submit slurm through the stand-in sbatch (tests/support/slurm/sbatch), which records its
+    calls: no --sbatch text and no output folder runs anything; the batch scripts, run by sh as
+    Slurm runs them, make the study."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.root = Path(self.tmp.name)
+        self.record = self.root / "sbatch"
+        self.record.mkdir()
+        self.canary = self.root / "pwned"
+        self.environment = {**os.environ, "PATH": f"{SUPPORT / 'slurm'}:{os.environ['PATH']}",
+                            "SBATCH_RECORD": str(self.record)}
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def submit(self, out, *more):
+        return study(TOOLS.scene, "--out", out, "--render", TOOLS.render, "--strategies", "uniform", "--spp", "2",
+                     "--seeds", "1", "--reference-spp", "4", "--width", "32", "--height", "18", "--quiet",
+                     "--submit", "slurm", *more, environment=self.environment)
+
+    def calls(self):
+        """Each sbatch call's arguments, in order."""
+        count = len(list(self.record.glob("*.args")))
+        return [(self.record / f"{n}.args").read_text().split("\0")[:-1] for n in range(count)]
+
+    def test_an_sbatch_text_a_shell_would_run_is_refused_and_runs_nothing(self):
+        for text, named in HOSTILE_SBATCH:
+            with self.subTest(text=text):
+                refused = self.submit(self.root / "study", "--sbatch=" + text.format(canary=self.canary))
+                self.assertEqual(refused.returncode, 2, refused.stderr)
+                self.assertIn("trs-study: error: --sbatch: " + named, refused.stderr)
+                self.assertEqual(sorted(p.name for p in self.root.iterdir()), ["sbatch"])
+                self.assertEqual(self.calls(), [])
+
+    def test_quoted_words_reach_sbatch_whole_and_the_scripts_hold_commands_alone(self):
+        words = f"--comment='a b' '--comment=$(touch {self.canary})' --exclude=node[1-3]"
+        submitted = self.submit(self.root / "study", "--sbatch", words)
+        self.assertEqual(submitted.returncode, 0, submitted.stderr)
+        self.assertEqual(submitted.stdout, "4244\n")  # the collection's job: the third call
+        calls = self.calls()
+        self.assertEqual(len(calls), 3)  # the reference, the renders at equal samples, the collection
+        for n, args in enumerate(calls):
+            self.assertEqual(args[-4:-1], ["--comment=a b", f"--comment=$(touch {self.canary})", "--exclude=node[1-3]"])
+            self.assertNotIn("#SBATCH", (self.record / f"{n}.script").read_text())
+        self.assertIn("--dependency=afterok:4242,afterany:4243", calls[2])
+        self.assertFalse(self.canary.exists())
+
+    def test_the_scripts_run_by_sh_make_the_study_in_any_output_folder(self):
+        out = self.root / "o" / f"$(touch {self.canary})" / f"it's `touch {self.canary}` \"q\""
+        submitted = self.submit(out)
+        self.assertEqual(submitted.returncode, 0, submitted.stderr)
+        for n in range(3):  # in the order of their dependencies
+            task = subprocess.run(["sh", self.record / f"{n}.script"], capture_output=True, text=True,
+                                  env={**self.environment, "SLURM_ARRAY_TASK_ID": "0"})
+            self.assertEqual(task.returncode, 0, task.stderr)
+        self.assertEqual(len(list(csv.DictReader((out / "results.csv").read_text().splitlines()))), 1)
+        self.assertFalse(self.canary.exists())
+        self.assertEqual(sorted(p.name for p in self.root.iterdir()), ["o", "sbatch"])
+
+    def test_a_path_with_a_control_character_is_refused_naming_its_option(self):
+        refused = self.submit(self.root / "a\nb")
+        self.assertEqual(refused.returncode, 2, refused.stderr)
+        self.assertIn("trs-study: error: --out: ", refused.stderr)
+        self.assertIn("holds a control character (newline) at character", refused.stderr)
+        self.assertEqual(sorted(p.name for p in self.root.iterdir()), ["sbatch"])
 
 
 if __name__ == "__main__":

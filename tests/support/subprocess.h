@@ -46,7 +46,8 @@ inline void write_file(const fs::path& file, const std::string& bytes) {
 }
 
 /// Starts `argv` (argv[0] the executable's path) with stdout and stderr written to the given
-/// files, and SIGINT at its default action, unblocked, whatever the test runner does with it.
+/// files, and SIGINT, SIGTERM and SIGHUP at their default actions, unblocked, whatever the test
+/// runner does with them (nohup ignores SIGHUP).
 /// Returns the process id, or -1 (a test failure recorded) if it cannot be started.
 inline pid_t spawn_process(const std::vector<std::string>& argv_strings, const fs::path& out_log,
                            const fs::path& err_log) {
@@ -60,7 +61,7 @@ inline pid_t spawn_process(const std::vector<std::string>& argv_strings, const f
   posix_spawnattr_init(&attributes);
   sigset_t defaults, empty;
   sigemptyset(&defaults);
-  sigaddset(&defaults, SIGINT);
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&defaults, signal);
   sigemptyset(&empty);
   posix_spawnattr_setsigdefault(&attributes, &defaults);
   posix_spawnattr_setsigmask(&attributes, &empty);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <string.h>
 
 #include <algorithm>
 #include <chrono>
@@ -18,6 +19,8 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "lightsampler/refinement.h"
@@ -523,11 +526,13 @@ TEST_F(RenderCliTest, UsageErrorsExitWithTwo) {
         tiny(kAnimated, {"--frames", "two", "--out", file("out.%04d.exr").string()}),
         tiny(kAnimated, {"--plan", "--out", file("out.exr").string()}),
         tiny(kAnimated, {"--resume", "--out", file("out.exr").string()}),
+        tiny(kAnimated, {"--save-partial", "--out", file("out.exr").string()}),
         tiny(kAnimated, {"--submit", "slurm", "--out", file("out.exr").string()}),
         tiny(kAnimated, {"--frames", "0:2", "--submit", "pbs", "--out", file("out.%04d.exr").string()}),
         tiny(kAnimated, {"--frames", "0:2", "--wait", "--out", file("out.%04d.exr").string()}),
         tiny(kAnimated, {"--frames", "0:2", "--sbatch", "--hold", "--out", file("out.%04d.exr").string()}),
-        tiny(kAnimated, {"--frames", "0:2", "--plan", "--submit", "slurm", "--out", file("out.%04d.exr").string()})}) {
+        tiny(kAnimated, {"--frames", "0:2", "--plan", "--submit", "slurm", "--out", file("out.%04d.exr").string()}),
+        tiny(kAnimated, {"--frames", "0:2", "--plan", "--out", file("a\nb.%04d.exr").string()})}) {
     const RunResult result = run(args);
     EXPECT_EQ(result.status, 2) << result.err;
     EXPECT_NE(result.err.find("trs-render: error: "), std::string::npos) << result.err;
@@ -780,53 +785,159 @@ TEST_F(RenderCliTest, PlanPrintsACommandPerChunkAndRendersNothing) {
   }
 }
 
-/// An `sbatch` for the tests, first on the PATH while it lives: it keeps its arguments and its
-/// batch script in DIR/args and DIR/script, prints a job id as --parsable asks, and with --wait
-/// runs the array's tasks itself, one after the other, as Slurm would on one node (but task
-/// `skipped`), failing if one failed.
+/// Slurm's sbatch, stood in for by tests/support/slurm/sbatch while this lives: first on the
+/// PATH, it records each call in DIR, prints a job id as --parsable asks, and with --wait runs
+/// the array's tasks itself (but task `skipped`).
 class StandInSbatch {
  public:
-  StandInSbatch(const fs::path& dir, int skipped = -1)
-      : dir_(dir), path_("PATH", (dir.string() + ":" + std::getenv("PATH")).c_str()) {
-    write_file(dir / "sbatch", "#!/bin/sh\n"
-                               "dir=$(dirname \"$0\"); echo \"$@\" > \"$dir/args\"\n"
-                               "for script; do :; done; cp \"$script\" \"$dir/script\"; echo 4242\n"
-                               "case \" $* \" in *\" --wait \"*) ;; *) exit 0 ;; esac\n"
-                               "tasks=$(sed -n 's/^#SBATCH --array=0-//p' \"$script\"); status=0\n"
-                               "for i in $(seq 0 \"$tasks\"); do\n"
-                               "  [ \"$i\" = " + std::to_string(skipped) + " ] && { status=1; continue; }\n"
-                               "  SLURM_ARRAY_TASK_ID=$i sh \"$dir/script\" > /dev/null 2>&1 || status=1\n"
-                               "done\nexit $status\n");
-    fs::permissions(dir / "sbatch", fs::perms::owner_all);
+  explicit StandInSbatch(const fs::path& dir, int skipped = -1)
+      : dir_(dir),
+        path_("PATH", (std::string(TRS_STAND_IN_SLURM) + ":" + std::getenv("PATH")).c_str()),
+        record_("SBATCH_RECORD", dir.c_str()),
+        skipped_("SBATCH_SKIPPED_TASK", std::to_string(skipped).c_str()) {
+    fs::create_directories(dir);
   }
-  std::string args() const { return read_file(dir_ / "args"); }
-  std::string script() const { return read_file(dir_ / "script"); }
+
+  std::size_t calls() const {
+    std::size_t calls = 0;
+    for (const auto& entry : fs::directory_iterator(dir_)) calls += entry.path().extension() == ".args";
+    return calls;
+  }
+  /// The arguments of the last call, the batch script's path last.
+  std::vector<std::string> args() const {
+    std::vector<std::string> words;
+    std::istringstream in(read_file(last(".args")));
+    for (std::string word; std::getline(in, word, '\0');) words.push_back(word);
+    return words;
+  }
+  std::string script() const { return read_file(last(".script")); }
+  /// Runs the last batch script as Slurm runs an array's task `task`: sh, SLURM_ARRAY_TASK_ID set.
+  RunResult run_task(int task) const {
+    const trs_test::ScopedEnvironment id("SLURM_ARRAY_TASK_ID", std::to_string(task).c_str());
+    const pid_t pid = trs_test::spawn_process({"/bin/sh", last(".script").string()}, dir_ / "task.out", dir_ / "task.err");
+    return {trs_test::wait_process(pid), read_file(dir_ / "task.out"), read_file(dir_ / "task.err")};
+  }
 
  private:
+  fs::path last(const char* suffix) const { return dir_ / (std::to_string(calls() - 1) + suffix); }
+
   fs::path dir_;
-  trs_test::ScopedEnvironment path_;
+  trs_test::ScopedEnvironment path_, record_, skipped_;
 };
 
+/// The regular files under `dir`, by their paths relative to it.
+std::set<std::string> files_under(const fs::path& dir) {
+  std::set<std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    if (entry.is_regular_file()) files.insert(fs::relative(entry.path(), dir).string());
+  return files;
+}
+
 // --submit slurm: one array task per chunk, each the --plan command with --resume, run by this
-// trs-render's absolute path; --sbatch's words reach sbatch; the job id alone on standard output.
+// trs-render's absolute path; sbatch's options, then --sbatch's words, on its command line; the
+// job id alone on standard output.
 TEST_F(RenderCliTest, SubmitHandsTheChunksToSlurmAsOneArray) {
-  fs::create_directories(file("bin"));
-  const StandInSbatch sbatch(file("bin"));
+  const StandInSbatch sbatch(file("sbatch"));
   const RunResult result = run(tiny(kAnimated, {"--frames", "0:4", "--chunk", "2", "--submit", "slurm", "--sbatch",
                                                 "--partition=gpu --time=10", "--out", file("s/f.%04d.exr").string()}));
   ASSERT_EQ(result.status, 0) << result.err;
   EXPECT_EQ(result.out, "4242\n");
   EXPECT_NE(result.err.find("Slurm job 4242: frames 0:4 in 3 tasks"), std::string::npos) << result.err;
-  EXPECT_NE(sbatch.args().find("--parsable --partition=gpu --time=10 "), std::string::npos) << sbatch.args();
+  std::vector<std::string> args = sbatch.args();
+  ASSERT_FALSE(args.empty());
+  EXPECT_EQ(fs::path(args.back()).parent_path(), file("s"));  // the batch script, beside the outputs
+  args.pop_back();
+  EXPECT_EQ(args, (std::vector<std::string>{"--parsable", "--job-name=trs-render", "--array=0-2",
+                                            "--output=" + file("s").string() + "/trs-render-%A_%a.log",
+                                            "--partition=gpu", "--time=10"}));
   const std::string script = sbatch.script();
-  EXPECT_NE(script.find("#SBATCH --array=0-2\n"), std::string::npos) << script;
-  EXPECT_NE(script.find("#SBATCH --output=" + file("s").string() + "/trs-render-%A_%a.log\n"), std::string::npos) << script;
+  EXPECT_EQ(script.rfind("#!/bin/sh\ncase \"$SLURM_ARRAY_TASK_ID\" in\n", 0), 0u) << script;
+  EXPECT_EQ(script.find("#SBATCH"), std::string::npos) << script;
   for (const char* range : {"0:1", "2:3", "4:4"})
     EXPECT_NE(script.find(" --resume --frames " + std::string(range) + " ;;"), std::string::npos) << script;
   EXPECT_NE(script.find(") exec /"), std::string::npos) << "not an absolute path: " << script;
   EXPECT_EQ(script.find("--submit"), std::string::npos) << script;
   EXPECT_EQ(script.find("--sbatch"), std::string::npos) << script;
-  EXPECT_EQ(listing(), (std::set<std::string>{"bin", "s"}));  // the batch script is gone
+  EXPECT_EQ(listing(), (std::set<std::string>{"s", "sbatch"}));  // the batch script is gone
+}
+
+// --sbatch's words reach sbatch without a shell: words that a shell would run something from are
+// refused, naming the character, before anything runs; quoted words arrive whole, as they are.
+TEST_F(RenderCliTest, SbatchWordsReachSbatchWithoutAShell) {
+  const StandInSbatch sbatch(file("sbatch"));
+  const std::string canary = file("pwned").string();
+  const auto submit = [&](const std::string& words) {
+    return run(tiny(kAnimated, {"--frames", "0:1", "--submit", "slurm", "--sbatch", words, "--out",
+                                file("s/f.%04d.exr").string()}));
+  };
+  for (const auto& [words, named] : std::vector<std::pair<std::string, std::string>>{
+           {"--partition=x; touch " + canary, "\";\" at character 14 is a shell operator"},
+           {"--partition=x $(touch " + canary + ")", "\"$\" at character 15 would expand in a shell"},
+           {"--partition=x `touch " + canary + "`", "\"`\" at character 15 would expand"},
+           {"--partition=x | touch " + canary, "\"|\" at character 15 is a shell operator"},
+           {"--partition=x && touch " + canary, "\"&\" at character 15"},
+           {"--partition=x >" + canary, "\">\" at character 15"},
+           {"--comment=\"$(touch " + canary + ")\"", "\"$\" at character 12"},
+           {"--partition=x\ntouch " + canary, "a control character (newline) at character 14"},
+           {"--comment='a", "\"'\" at character 11 opens a quote that is never closed"}}) {
+    SCOPED_TRACE(words);
+    const RunResult result = submit(words);
+    EXPECT_EQ(result.status, 2) << result.err;
+    EXPECT_NE(result.err.find("trs-render: error: --sbatch: " + named), std::string::npos) << result.err;
+    EXPECT_EQ(listing(), std::set<std::string>{"sbatch"});  // no canary, no output folder
+    EXPECT_EQ(sbatch.calls(), 0u);
+  }
+  const RunResult quoted = submit("--comment='a b' '--comment=$(touch " + canary + ")' --exclude=node[1-3] --comment=\\;");
+  ASSERT_EQ(quoted.status, 0) << quoted.err;
+  const std::vector<std::string> args = sbatch.args();
+  ASSERT_GE(args.size(), 5u);
+  EXPECT_EQ(std::vector<std::string>(args.end() - 5, args.end() - 1),
+            (std::vector<std::string>{"--comment=a b", "--comment=$(touch " + canary + ")", "--exclude=node[1-3]",
+                                      "--comment=;"}));
+  EXPECT_EQ(listing(), (std::set<std::string>{"s", "sbatch"}));
+}
+
+// An output folder that a shell would read more into is quoted in the batch script: run by sh as
+// Slurm runs a task, the task renders into that folder and creates nothing else. A control
+// character in a path is refused, naming the option; a backslash in the folder too, which would
+// give every task's log one name.
+TEST_F(RenderCliTest, ABatchScriptHoldsAnyOutputFolderQuoted) {
+  const StandInSbatch sbatch(file("sbatch"));
+  const std::string canary = file("pwned").string();
+  for (const std::string& folder : {std::string("it's \"quoted\""), "$(touch " + canary + ")", "`touch " + canary + "`",
+                                    std::string("a b;c|d&e"), std::string("100%")}) {
+    SCOPED_TRACE(folder);
+    fs::remove_all(file("o"));
+    const fs::path out = file("o") / folder / "f.%04d.exr";
+    const RunResult submitted = run(tiny(kAnimated, {"--frames", "0:0", "--submit", "slurm", "--out", out.string()}));
+    ASSERT_EQ(submitted.status, 0) << submitted.err;
+    std::string pattern;  // sbatch's --output: Slurm reads % as a replacement symbol, %% as %
+    for (const char c : out.parent_path().string()) pattern += c == '%' ? "%%" : std::string(1, c);
+    const std::vector<std::string> args = sbatch.args();
+    EXPECT_NE(std::find(args.begin(), args.end(), "--output=" + pattern + "/trs-render-%A_%a.log"), args.end());
+    const RunResult task = sbatch.run_task(0);
+    EXPECT_EQ(task.status, 0) << task.err;
+    EXPECT_EQ(files_under(file("o")),
+              std::set<std::string>{fs::relative(out.parent_path() / "f.0000.exr", file("o")).string()});
+    EXPECT_EQ(listing(), (std::set<std::string>{"o", "sbatch"}));  // no canary
+    read_render(out.parent_path() / "f.0000.exr", 16, 9);
+  }
+  fs::remove_all(file("o"));
+  for (const auto& [option, path, named] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"--out", file("o/a\nb/f.%04d.exr").string(), "newline"},
+           {"--stats", file("o/s\r.%04d.json").string(), "carriage return"}}) {
+    std::vector<std::string> args = tiny(kAnimated, {"--frames", "0:0", "--submit", "slurm", option, path});
+    if (option != "--out") args.insert(args.end(), {"--out", file("o/f.%04d.exr").string()});
+    const RunResult refused = run(args);
+    EXPECT_EQ(refused.status, 2) << refused.err;
+    EXPECT_NE(refused.err.find("trs-render: error: " + option + ": \""), std::string::npos) << refused.err;
+    EXPECT_NE(refused.err.find("holds a control character (" + named + ")"), std::string::npos) << refused.err;
+  }
+  const RunResult backslash = run(tiny(kAnimated, {"--frames", "0:0", "--submit", "slurm", "--out", file("o/a\\b/f.%04d.exr").string()}));
+  EXPECT_EQ(backslash.status, 1) << backslash.err;
+  EXPECT_NE(backslash.err.find("--out: the folder \"" + file("o/a\\b").string() + "\" holds a backslash"), std::string::npos)
+      << backslash.err;
+  EXPECT_EQ(listing(), std::set<std::string>{"sbatch"});
 }
 
 // --wait: the tasks' frames equal a render of the range here, bit for bit; a task that did not
@@ -834,17 +945,16 @@ TEST_F(RenderCliTest, SubmitHandsTheChunksToSlurmAsOneArray) {
 TEST_F(RenderCliTest, SubmitWaitRendersTheFramesAsHereAndNamesTheMissingOnes) {
   const std::vector<std::string> local = tiny(kAnimated, {"--frames", "0:3", "--out", file("here.%04d.exr").string()});
   ASSERT_EQ(run(local).status, 0);
-  fs::create_directories(file("bin"));
   const std::vector<std::string> submit = tiny(kAnimated, {"--frames", "0:3", "--chunk", "2", "--submit", "slurm", "--wait",
                                                      "--out", file("s/f.%04d.exr").string()});
   {
-    const StandInSbatch sbatch(file("bin"), 1);
+    const StandInSbatch sbatch(file("sbatch"), 1);
     const RunResult failed = run(submit);
     EXPECT_EQ(failed.status, 1) << failed.err;
     EXPECT_NE(failed.err.find("task 1 left frames 2:3 unwritten"), std::string::npos) << failed.err;
   }
   const auto written = fs::last_write_time(file("s/f.0000.exr"));
-  const StandInSbatch sbatch(file("bin"));
+  const StandInSbatch sbatch(file("sbatch"));
   const RunResult again = run(submit);
   ASSERT_EQ(again.status, 0) << again.err;
   EXPECT_EQ(fs::last_write_time(file("s/f.0000.exr")), written);  // --resume: not rendered again
@@ -919,48 +1029,65 @@ TEST_F(RenderCliTest, ASequenceFrameThatIsNotAnImageIsNamed) {
   expect_failure_naming(args, file("clip.1.png"));
 }
 
-enum class SigintState { default_action, caught, exited };
+enum class HandlerState { default_action, caught, exited };
 
-/// Whether a running process has a SIGINT handler installed, from Linux's /proc.
-SigintState sigint_state(pid_t pid) {
+/// Whether a running process has a handler installed for `signal`, from Linux's /proc.
+HandlerState handler_state(pid_t pid, int signal) {
   std::ifstream in("/proc/" + std::to_string(pid) + "/status");
   std::string line;
   while (std::getline(in, line)) {
     if (line.rfind("State:", 0) == 0 && line.find('Z') != std::string::npos)
-      return SigintState::exited;
+      return HandlerState::exited;
     if (line.rfind("SigCgt:", 0) == 0) {
       const unsigned long long mask = std::stoull(line.substr(7), nullptr, 16);
-      return mask & (1ull << (SIGINT - 1)) ? SigintState::caught : SigintState::default_action;
+      return mask & (1ull << (signal - 1)) ? HandlerState::caught : HandlerState::default_action;
     }
   }
-  return SigintState::exited;
+  return HandlerState::exited;
 }
 
-// 6. Ctrl-C: the frames done are saved, the run says it was interrupted, status 130.
-TEST_F(RenderCliTest, InterruptSavesTheFramesDone) {
-  const fs::path exr = file("long.exr"), json = file("long.json");
-  const pid_t pid = start({kScene.string(), "--width", "64", "--height", "36", "--spp", "100000",
-                           "--lights", "1000", "--max-depth", "2", "--threads", "2", "--out",
-                           exr.string(), "--stats", json.string()});
-  ASSERT_GT(pid, 0);
-  // The handler is installed once the scene is loaded and the render starts (earlier, Ctrl-C
-  // just ends the process); then a frame of 64 x 36 takes milliseconds.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  SigintState state = SigintState::default_action;
-  while ((state = sigint_state(pid)) == SigintState::default_action &&
-         std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  if (state != SigintState::caught) {
-    ::kill(pid, SIGKILL);
-    const RunResult failed = finish(pid);
-    FAIL() << "the render did not start: status " << failed.status << "\n" << failed.err;
+/// Runs that a stop signal ends: SIGINT (Ctrl-C), SIGTERM (Slurm's time limit, scancel,
+/// preemption) or SIGHUP.
+class RenderCliStopTest : public RenderCliTest {
+ protected:
+  /// trs-render on `args`, sent `signal` once it has rendered for `rendering`: the handler is
+  /// installed once the run starts (earlier, the signal just ends the process), and from then on a
+  /// pass of these small images takes milliseconds. None (a failure recorded) if it never started.
+  std::optional<RunResult> stopped(const std::vector<std::string>& args, int signal,
+                                   std::chrono::milliseconds rendering) {
+    const pid_t pid = start(args);
+    if (pid <= 0) return std::nullopt;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    HandlerState state = HandlerState::default_action;
+    while ((state = handler_state(pid, signal)) == HandlerState::default_action &&
+           std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (state != HandlerState::caught) {
+      ::kill(pid, SIGKILL);
+      const RunResult failed = finish(pid);
+      ADD_FAILURE() << "the render did not start: status " << failed.status << "\n" << failed.err;
+      return std::nullopt;
+    }
+    std::this_thread::sleep_for(rendering);
+    EXPECT_EQ(::kill(pid, signal), 0);
+    return finish(pid);
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-  ASSERT_EQ(::kill(pid, SIGINT), 0);
-  const RunResult result = finish(pid);
+};
 
-  EXPECT_EQ(result.status, 130) << result.err;
-  EXPECT_NE(result.err.find("interrupted"), std::string::npos) << result.err;
+class RenderCliSignalTest : public RenderCliStopTest, public ::testing::WithParamInterface<int> {};
+
+// 6. Ctrl-C, SIGTERM and SIGHUP: the passes done are saved with their stats, the run says it was
+// interrupted, status 128 + the signal.
+TEST_P(RenderCliSignalTest, SavesThePassesDone) {
+  const int signal = GetParam();
+  const fs::path exr = file("long.exr"), json = file("long.json");
+  const std::optional<RunResult> result =
+      stopped({kScene.string(), "--width", "64", "--height", "36", "--spp", "100000", "--lights", "1000",
+               "--max-depth", "2", "--threads", "2", "--out", exr.string(), "--stats", json.string()},
+              signal, std::chrono::milliseconds(1500));
+  ASSERT_TRUE(result);
+  EXPECT_EQ(result->status, 128 + signal) << result->err;
+  EXPECT_NE(result->err.find("interrupted; saved "), std::string::npos) << result->err;
   EXPECT_EQ(listing(), (std::set<std::string>{"long.exr", "long.json"}));  // no temporaries
   const auto image = read_render(exr, 64, 36);
   ASSERT_TRUE(image);
@@ -971,6 +1098,46 @@ TEST_F(RenderCliTest, InterruptSavesTheFramesDone) {
   EXPECT_GE(frames, 1u);
   EXPECT_LE(frames, 99999u);
   EXPECT_EQ(stats["settings"]["spp"], 100000);
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, RenderCliSignalTest, ::testing::Values(SIGINT, SIGTERM, SIGHUP),
+                         [](const ::testing::TestParamInfo<int>& info) { return std::string(sigabbrev_np(info.param)); });
+
+// A sequence stopped in a frame keeps the frames written; the frame under way is dropped, or with
+// --save-partial written under partial names with stats that say so. --resume renders that frame
+// again and then removes its partial outputs.
+TEST_F(RenderCliStopTest, ASequenceKeepsTheFrameUnderWayOnlyWithSavePartial) {
+  const auto sequence = [&](const char* spp, const char* more) {
+    std::vector<std::string> args =
+        tiny(kAnimated, {"--frames", "0:1", "--out", file("f.%04d.exr").string(), "--stats",
+                         file("f.%04d.json").string(), "--preview", file("f.%04d.png").string(), more});
+    args.insert(args.end(), {"--spp", spp});  // after tiny()'s: the last wins
+    return args;
+  };
+  const std::optional<RunResult> dropped = stopped(sequence("100000", "--quiet"), SIGTERM, std::chrono::milliseconds(1500));
+  ASSERT_TRUE(dropped);
+  EXPECT_EQ(dropped->status, 143) << dropped->err;
+  EXPECT_NE(dropped->err.find("interrupted; frame 0 dropped (--save-partial keeps its passes)"), std::string::npos)
+      << dropped->err;
+  EXPECT_EQ(listing(), std::set<std::string>{});
+
+  const std::optional<RunResult> kept = stopped(sequence("100000", "--save-partial"), SIGTERM, std::chrono::milliseconds(1500));
+  ASSERT_TRUE(kept);
+  EXPECT_EQ(kept->status, 143) << kept->err;
+  EXPECT_NE(kept->err.find(" spp of frame 0 as " + file("f.0000.partial.exr").string()), std::string::npos) << kept->err;
+  EXPECT_EQ(listing(), (std::set<std::string>{"f.0000.partial.exr", "f.0000.partial.json", "f.0000.partial.png"}));
+  read_render(file("f.0000.partial.exr"), 16, 9);
+  const nlohmann::json stats = read_json(file("f.0000.partial.json"));
+  EXPECT_EQ(stats["interrupted"], true);
+  EXPECT_EQ(stats["frame"], 0);
+  EXPECT_GE(stats["frames"].get<unsigned>(), 1u);
+
+  const RunResult resumed = run(sequence("2", "--resume"));
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_EQ(listing(), (std::set<std::string>{"f.0000.exr", "f.0000.json", "f.0000.png", "f.0001.exr", "f.0001.json",
+                                              "f.0001.png"}));
+  EXPECT_EQ(read_json(file("f.0000.json"))["interrupted"], false);
+  EXPECT_EQ(read_json(file("f.0000.json"))["frames"], 2);
 }
 
 }  // namespace

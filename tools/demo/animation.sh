@@ -2,7 +2,8 @@
 # The animation demo (tools/demo.sh --animation): scenes/video-wall, frames 0 to 47, with uniform
 # and with trs-render's default strategy (ris) at equal time per frame, then both side by side in
 # one labelled MP4.
-# Usage: tools/demo/animation.sh OUT_DIR SECONDS_PER_FRAME
+# Usage: tools/demo/animation.sh OUT_DIR SECONDS_PER_FRAME (a positive decimal number, which
+# tools/demo.sh checks: it is written into ffmpeg's filter)
 set -euo pipefail
 out=$1 seconds=$2
 scene=scenes/video-wall

@@ -1,6 +1,10 @@
 // trs-render: renders a glTF scene lit by emissive textures and writes a linear EXR.
-// Exit status: 0 success, 1 bad input or failed run, 2 bad command line, 130 interrupted by
-// Ctrl-C (the image of the frames done is saved).
+// Exit status: 0 success, 1 bad input or failed run, 2 bad command line; 128 + the signal when
+// stopped by SIGINT (Ctrl-C, 130), SIGTERM (Slurm's time limit and scancel, 143) or SIGHUP (129):
+// a still saves the passes done, a sequence the frames done (and the frame under way with
+// --save-partial).
+
+#include <signal.h>
 
 #include <csignal>
 
@@ -20,13 +24,32 @@
 namespace trs {
 namespace {
 
-std::atomic<bool> interrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+/// The signals that stop a render cleanly: Ctrl-C, and what Slurm sends at a time limit, on
+/// scancel and on preemption (SIGTERM, then SIGKILL after its KillWait), and a hang-up.
+constexpr int kStopSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
-/// First Ctrl-C: finish the frames done and save them. A second one: the default action.
-extern "C" void on_interrupt(int) {
+std::atomic<bool> interrupted{false};
+std::atomic<int> stop_signal{0};
+static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free,
+              "set from a signal handler");
+
+/// The first stop signal: the passes done are saved. A second one: the default action.
+extern "C" void on_stop_signal(int signal) {
+  stop_signal = signal;
   interrupted = true;
-  std::signal(SIGINT, SIG_DFL);
+  for (const int s : kStopSignals) {
+    struct sigaction current;
+    if (sigaction(s, nullptr, &current) == 0 && current.sa_handler == on_stop_signal) std::signal(s, SIG_DFL);
+  }
+}
+
+/// From here on, a stop signal stops cleanly: temporaries are removed and what is done is saved.
+/// A signal ignored on entry (SIGHUP under nohup) stays ignored.
+void catch_stop_signals() {
+  for (const int s : kStopSignals) {
+    struct sigaction current;
+    if (sigaction(s, nullptr, &current) == 0 && current.sa_handler != SIG_IGN) std::signal(s, on_stop_signal);
+  }
 }
 
 /// --plan: the command line once per chunk of frames, with that chunk's --frames and without
@@ -61,10 +84,10 @@ int run(const RenderOptions& options) {
   if (options.plan_chunk) return print_plan(options);
   if (options.submit) return submit(options);
   const auto start = std::chrono::steady_clock::now();
-  // From here on, Ctrl-C stops cleanly: temporaries are removed and what is done is saved.
-  std::signal(SIGINT, on_interrupt);
+  catch_stop_signals();
   const auto print = [](const RunNote& note) { std::cerr << note_line(note) << "\n"; };
-  return render(options, start, RunHooks{interrupted, std::cout, print});
+  const int status = render(options, start, RunHooks{interrupted, std::cout, print});
+  return status == kInterrupted && stop_signal != 0 ? 128 + stop_signal : status;
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "common/build_commit.h"
 #include "common/cli_options.h"
 #include "scene_io/frame_pattern.h"
+#include "shell_words.h"
 
 namespace trs {
 namespace {
@@ -237,12 +238,12 @@ struct LightSamplerOptions {
   void finish(lightsampler::SamplerOptions& sampler) const { sampler.backend = kBackends.at(backend); }
 };
 
-/// --frames and --fps, and how a sequence runs: --resume, --plan, --submit, --chunk.
+/// --frames and --fps, and how a sequence runs: --resume, --save-partial, --plan, --submit, --chunk.
 struct AnimationOptions {
   std::string frames;
   std::int64_t chunk = 1;
   bool plan = false;
-  std::string submit;
+  std::string submit, sbatch;
   RenderOptions::Submission submission;
 
   void add(CLI::App& app, RenderOptions& options) {
@@ -253,6 +254,10 @@ struct AnimationOptions {
         ->check(CLI::PositiveNumber & kFiniteNonNegative)
         ->capture_default_str();
     app.add_flag("--resume", options.resume, "--frames: skip the frames whose outputs are all there");
+    app.add_flag("--save-partial", options.save_partial,
+                 "--frames: when stopped (Ctrl-C, SIGTERM, SIGHUP), write the passes done of the frame under way, "
+                 "each output with .partial before its extension (out.0007.partial.exr); --resume renders that "
+                 "frame again");
     app.add_flag("--plan", plan,
                  "--frames: print one trs-render command per chunk of frames (for GNU parallel or a Slurm "
                  "array) and render nothing");
@@ -260,8 +265,10 @@ struct AnimationOptions {
                    "--frames: submit the frames to a scheduler as one job array, a task per chunk, each "
                    "the command --plan prints with --resume; print the job id and return (docs/cluster.md)")
         ->check(CLI::IsMember({"slurm"}));
-    app.add_option("--sbatch", submission.sbatch,
-                   "--submit: options for sbatch, as the shell splits them ('--partition=gpu --gres=gpu:1')");
+    app.add_option("--sbatch", sbatch,
+                   "--submit: options for sbatch ('--partition=gpu --gres=gpu:1'), split into words by the "
+                   "shell's quotes and backslashes; nothing is expanded or run, so $, ` and unquoted ; | & < > ( ) "
+                   "are refused");
     app.add_flag("--wait", submission.wait,
                  "--submit: wait for the job array to end; fail, naming the frames, if any task failed");
     app.add_option("--chunk", chunk, "--plan and --submit: frames per command")
@@ -278,12 +285,33 @@ struct AnimationOptions {
     if (!submit.empty()) {
       options.submit = submission;
       options.submit->chunk = chunk;
+      try {
+        options.submit->sbatch = split_shell_words(sbatch);
+      } catch (const ShellWordsError& e) {
+        return std::string("--sbatch: ") + e.what();
+      }
     }
     if (plan && options.submit) return "--plan and --submit are two ways to run the frames: give one";
     if (UsageError error = misplaced(app, {"--sbatch", "--wait"}, options.submit.has_value(), "belongs to --submit"))
       return error;
-    return misplaced(app, {"--resume", "--plan", "--submit", "--chunk"}, options.frames.has_value(),
-                     "belongs to --frames");
+    if (UsageError error = misplaced(app, {"--resume", "--save-partial", "--plan", "--submit", "--chunk"},
+                                     options.frames.has_value(), "belongs to --frames"))
+      return error;
+    return plan || options.submit ? control_character_in_values(app) : std::nullopt;
+  }
+
+  /// --plan and --submit write the command line's words into commands that sh reads a line at a
+  /// time: the first option whose value holds a control character, named with it. (--sbatch's
+  /// words go to sbatch alone, split by rules of their own.)
+  static UsageError control_character_in_values(const CLI::App& app) {
+    for (const CLI::Option* option : app.get_options()) {
+      if (option->get_name() == "--sbatch") continue;
+      for (const std::string& value : option->results())
+        if (const std::optional<std::string> control = control_character(value))
+          return option->get_name() + ": " + printable(value) + " holds " + *control +
+                 ", which a command for a shell or a scheduler cannot hold safely";
+    }
+    return std::nullopt;
   }
 };
 
@@ -450,12 +478,23 @@ std::filesystem::path output(const RenderOptions& options, const std::filesystem
   return path.parent_path() / FramePattern(path.filename().string()).format(frame);
 }
 
+std::filesystem::path partial_output(const std::filesystem::path& file) {
+  return file.parent_path() / (file.stem().string() + ".partial" + file.extension().string());
+}
+
 std::vector<std::filesystem::path> outputs(const RenderOptions& options) {
   std::vector<std::filesystem::path> paths;
   if (!options.out.empty()) paths.push_back(options.out);
   for (const auto* path : {&options.stats, &options.preview, &options.variance, &options.emitter_mask})
     if (*path) paths.push_back(**path);
   return paths;
+}
+
+bool frame_written(const RenderOptions& options, std::int64_t frame) {
+  const std::vector<std::filesystem::path> paths = outputs(options);
+  return std::all_of(paths.begin(), paths.end(), [&](const std::filesystem::path& path) {
+    return std::filesystem::exists(output(options, path, frame));
+  });
 }
 
 }  // namespace trs

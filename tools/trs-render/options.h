@@ -47,12 +47,15 @@ struct RenderOptions {
   /// A sequence: one image per animation frame (each with its own seeds; --spp and --time each).
   std::optional<FrameRange> frames;
   bool resume = false;  ///< skip the frames whose outputs are all written
+  /// --save-partial: a sequence stopped by `cancel` writes the frame under way as it is, each
+  /// output under partial_output()'s name.
+  bool save_partial = false;
   /// --plan: print a command per chunk of this many frames instead of rendering.
   std::optional<std::int64_t> plan_chunk;
   /// --submit slurm: hand the frames to Slurm as one job array instead of rendering.
   struct Submission {
     std::int64_t chunk = 1;  ///< frames per array task
-    std::string sbatch;      ///< --sbatch: sbatch's own options, as the shell splits them
+    std::vector<std::string> sbatch;  ///< --sbatch: sbatch's own options, split by split_shell_words()
     bool wait = false;       ///< --wait: block until the array ends
   };
   std::optional<Submission> submit;
@@ -64,8 +67,17 @@ struct RenderOptions {
 std::filesystem::path output(const RenderOptions& options, const std::filesystem::path& path,
                              std::int64_t frame);
 
+/// Where a sequence stopped by `cancel` writes `file` (an output() of the frame under way) with
+/// --save-partial: ".partial" before its extension (f.0007.exr: f.0007.partial.exr), a name that
+/// --resume does not take for the frame's.
+std::filesystem::path partial_output(const std::filesystem::path& file);
+
 /// Every output path that options ask for, `out` first (when set: Python's render() may write none).
 std::vector<std::filesystem::path> outputs(const RenderOptions& options);
+
+/// Whether every output of animation frame `frame` is there under its own name: a frame --resume
+/// skips (partial outputs do not count).
+bool frame_written(const RenderOptions& options, std::int64_t frame);
 
 /// Exit status of a command line that is wrong (as opposed to inputs that are).
 inline constexpr int kUsageError = 2;

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <stdexcept>
 #include <string_view>
+
+#include "shell_words.h"
 
 namespace trs {
 namespace {
@@ -17,23 +20,11 @@ constexpr std::array kDropped = {Dropped{"--plan", false}, Dropped{"--wait", fal
 
 }  // namespace
 
-std::string shell_quoted(const std::string& word) {
-  if (!word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.,/:=%+@") ==
-                           std::string::npos)
-    return word;
-  std::string out = "'";
-  for (const char c : word) {
-    if (c == '\'')
-      out.append("'\\''");
-    else
-      out.push_back(c);
-  }
-  out.push_back('\'');
-  return out;
-}
-
 std::vector<PlannedCommand> plan_commands(const RenderOptions& options, const std::string& program,
                                           std::int64_t chunk, bool resume) {
+  if (const std::optional<std::string> control = control_character(program))
+    throw std::invalid_argument("the program's path " + printable(program) + " holds " + *control +
+                                ", which a command line cannot hold safely");
   std::string kept;
   bool has_resume = false;
   for (std::size_t i = 1; i < options.arguments.size(); ++i) {

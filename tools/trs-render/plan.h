@@ -10,9 +10,6 @@
 
 namespace trs {
 
-/// A shell word: as it is when it is safe, in single quotes otherwise.
-std::string shell_quoted(const std::string& word);
-
 /// One command of a plan: the frames it renders and its command line, quoted for a shell.
 struct PlannedCommand {
   FrameRange frames;
@@ -21,7 +18,9 @@ struct PlannedCommand {
 
 /// The command line once per `chunk` frames of options.frames, run by `program`, with that
 /// chunk's --frames and without the options that plan or submit (--plan, --submit, --sbatch,
-/// --wait, --chunk); `resume` adds --resume where the command line lacks it.
+/// --wait, --chunk); `resume` adds --resume where the command line lacks it. The options' words
+/// hold no control character (the parser refuses them with --plan and --submit); a `program`
+/// that does is a std::invalid_argument.
 std::vector<PlannedCommand> plan_commands(const RenderOptions& options, const std::string& program,
                                           std::int64_t chunk, bool resume);
 

@@ -36,16 +36,25 @@ std::optional<DisplayEncoder> preview_encoder(const RenderOptions& options, cons
   return display_encoder(options, note);
 }
 
-/// The outputs of one image: the EXR, then what else the options ask for (a preview, encoded by
-/// `display`).
+/// The file of output `path` for animation frame `frame`; under partial_output()'s name for a
+/// frame cut short.
+std::filesystem::path frame_file(const RenderOptions& options, const std::filesystem::path& path, std::int64_t frame,
+                                 bool partial) {
+  const std::filesystem::path file = output(options, path, frame);
+  return partial ? partial_output(file) : file;
+}
+
+/// The outputs of one image but the stats: the EXR, then what else the options ask for (a
+/// preview, encoded by `display`); `partial` for a frame cut short.
 void write_outputs(const RenderOptions& options, const std::optional<DisplayEncoder>& display, std::int64_t frame,
-                   const tracer::RenderResult& result) {
-  if (!options.out.empty()) write_exr(output(options, options.out, frame), result.width, result.height, result.rgb.data());
+                   const tracer::RenderResult& result, bool partial = false) {
+  const auto file = [&](const std::filesystem::path& path) { return frame_file(options, path, frame, partial); };
+  if (!options.out.empty()) write_exr(file(options.out), result.width, result.height, result.rgb.data());
   if (options.preview)
-    write_png_preview(output(options, *options.preview, frame), result.width, result.height, result.rgb.data(),
-                      options.exposure, *display);
-  if (options.variance) write_grey(output(options, *options.variance, frame), result, result.luminance_variance);
-  if (options.emitter_mask) write_grey(output(options, *options.emitter_mask, frame), result, result.emitter_fraction);
+    write_png_preview(file(*options.preview), result.width, result.height, result.rgb.data(), options.exposure,
+                      *display);
+  if (options.variance) write_grey(file(*options.variance), result, result.luminance_variance);
+  if (options.emitter_mask) write_grey(file(*options.emitter_mask), result, result.emitter_fraction);
 }
 
 void warn_about(const NoteHandler& note, const tracer::RenderResult& result) {
@@ -100,19 +109,60 @@ int render_still(const RenderOptions& options, std::chrono::steady_clock::time_p
   return 0;
 }
 
-bool written(const RenderOptions& options, std::int64_t frame) {
-  const auto paths = outputs(options);
-  return std::all_of(paths.begin(), paths.end(),
-                     [&](const std::filesystem::path& path) { return std::filesystem::exists(output(options, path, frame)); });
+/// A frame of a sequence written, its stats too, and its line printed: under partial names for
+/// one cut short. Returns its stats.
+nlohmann::json write_frame(const RenderOptions& options, const std::optional<DisplayEncoder>& display,
+                           const SequenceFrame& frame, const tracer::RenderResult& result,
+                           std::chrono::steady_clock::time_point frame_start, bool partial, std::ostream& out) {
+  write_outputs(options, display, frame.frame, result, partial);
+  const double wall = seconds_since(frame_start);
+  const nlohmann::json summary = stats_json(options, result, wall, frame, display);
+  if (options.stats) {
+    AtomicFile stats(frame_file(options, *options.stats, frame.frame, partial));
+    stats.write(summary.dump(2) + "\n");
+    stats.commit();
+  }
+  print_frame(out, frame_file(options, options.out, frame.frame, partial), result, frame, wall);
+  return summary;
 }
 
-/// A sequence, frame by frame: each written whole as it is done. Ctrl-C finishes the frame under
-/// way and stops; the frames written stay.
+/// Once a frame is written whole, what an earlier run stopped in it left under partial names
+/// goes. One that cannot be removed stays: it is never taken for the frame.
+void remove_partial_outputs(const RenderOptions& options, std::int64_t frame) {
+  for (const std::filesystem::path& path : outputs(options)) {
+    std::error_code ignored;
+    std::filesystem::remove(frame_file(options, path, frame, true), ignored);
+  }
+}
+
+/// A sequence stopped by `cancel` in `frame`, `result` its passes done: written under partial
+/// names with --save-partial (once it has a pass and an output), else dropped.
+int stop_in_frame(const RenderOptions& options, const std::optional<DisplayEncoder>& display,
+                  const SequenceFrame& frame, const tracer::RenderResult& result,
+                  std::chrono::steady_clock::time_point frame_start, const RunHooks& hooks) {
+  const std::string f = std::to_string(frame.frame);
+  const std::vector<std::filesystem::path> paths = outputs(options);
+  if (!options.save_partial || result.passes == 0 || paths.empty()) {
+    const char* why = !options.save_partial ? " (--save-partial keeps its passes)" : " before its first pass";
+    hooks.note({RunNote::Kind::interrupted, "interrupted; frame " + f + " dropped" + why +
+                                                ", the frames written stay (--resume renders the rest)"});
+    return kInterrupted;
+  }
+  write_frame(options, display, frame, result, frame_start, true, hooks.out);
+  hooks.note({RunNote::Kind::interrupted,
+              "interrupted; saved " + std::to_string(result.passes) + " spp of frame " + f + " as " +
+                  frame_file(options, paths.front(), frame.frame, true).string() +
+                  ", the frames written stay (--resume renders the rest, that frame included)"});
+  return kInterrupted;
+}
+
+/// A sequence, frame by frame: each written whole as it is done. `cancel` stops the frame under
+/// way (a time limit's SIGTERM leaves little time); the frames written stay.
 int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
   const FrameRange frames = *options.frames;
   std::vector<std::int64_t> todo;
   for (std::int64_t f = frames.first; f <= frames.last; ++f)
-    if (!options.resume || !written(options, f)) todo.push_back(f);
+    if (!options.resume || !frame_written(options, f)) todo.push_back(f);
   if (todo.size() < std::size_t(frames.count()))
     hooks.out << frames.count() - std::int64_t(todo.size()) << " frames already written, " << todo.size() << " to render\n";
   if (todo.empty()) return 0;
@@ -127,7 +177,6 @@ int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
   ProgressBar bar(options.progress, options.time_seconds
                                         ? std::optional<double>(*options.time_seconds * double(todo.size()))
                                         : std::nullopt);
-  const std::atomic<bool> never{false};  // the frame under way always finishes
   for (std::size_t i = 0; i < todo.size() && !hooks.cancel; ++i) {
     const auto frame_start = std::chrono::steady_clock::now();
     SequenceFrame frame{todo[i], tracer::animation_seconds(todo[i], options.render.fps), {}};
@@ -142,17 +191,11 @@ int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
           bar.update(done_before + done, unsigned(todo.size()) * spp);
           if (hooks.on_frame) hooks.on_frame();
         },
-        never);
-    write_outputs(options, display, frame.frame, result);
-    const double wall = seconds_since(frame_start);
-    const nlohmann::json summary = stats_json(options, result, wall, frame, display);
-    if (options.stats) {
-      AtomicFile stats(output(options, *options.stats, frame.frame));
-      stats.write(summary.dump(2) + "\n");
-      stats.commit();
-    }
+        hooks.cancel);
     bar.finish();
-    print_frame(hooks.out, output(options, options.out, frame.frame), result, frame, wall);
+    if (result.interrupted) return stop_in_frame(options, display, frame, result, frame_start, hooks);
+    const nlohmann::json summary = write_frame(options, display, frame, result, frame_start, false, hooks.out);
+    remove_partial_outputs(options, frame.frame);
     warn_about(hooks.note, result);
     if (hooks.on_image) hooks.on_image(frame.frame, result, summary);
   }

@@ -18,7 +18,7 @@
 namespace trs {
 
 /// Exit status of a run that failed, and of one stopped by `cancel` (128 + SIGINT, as shells
-/// report Ctrl-C).
+/// report Ctrl-C; trs-render exits with 128 + whichever signal stopped it).
 inline constexpr int kRunFailed = 1;
 inline constexpr int kInterrupted = 130;
 
@@ -40,8 +40,9 @@ std::string note_line(const RunNote& note);
 using NoteHandler = std::function<void(const RunNote&)>;
 
 struct RunHooks {
-  /// Once true, a still drops the frame under way and keeps the frames done; a sequence
-  /// finishes the frame under way and stops.
+  /// Once true, the pass under way is dropped: a still keeps the passes done; a sequence keeps
+  /// the frames done and stops, the frame under way written under partial names with
+  /// --save-partial, else dropped.
   const std::atomic<bool>& cancel;
   /// Summaries (trs-render's standard output).
   std::ostream& out;

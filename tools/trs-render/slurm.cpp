@@ -1,31 +1,61 @@
 #include "slurm.h"
 
+#include <fcntl.h>
+#include <spawn.h>
 #include <stdio.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <optional>
 #include <stdexcept>
 
 #include "plan.h"
+#include "shell_words.h"
+
+extern char** environ;
 
 namespace trs {
 namespace {
 
 namespace fs = std::filesystem;
 
-/// The batch script: the array's task index picks its command.
-std::string batch_script(const std::vector<PlannedCommand>& commands, const fs::path& log_pattern) {
-  std::string script = "#!/bin/sh\n";
-  script += "#SBATCH --job-name=trs-render\n";
-  script += "#SBATCH --array=0-" + std::to_string(commands.size() - 1) + "\n";
-  script += "#SBATCH --output=" + log_pattern.string() + "\n";
-  script += "case \"$SLURM_ARRAY_TASK_ID\" in\n";
+/// The batch script: the array's task index picks its command. It holds nothing else: sbatch's
+/// options go on its command line, where no shell reads them.
+std::string batch_script(const std::vector<PlannedCommand>& commands) {
+  std::string script = "#!/bin/sh\ncase \"$SLURM_ARRAY_TASK_ID\" in\n";
   for (std::size_t i = 0; i < commands.size(); ++i)
     script += "  " + std::to_string(i) + ") exec " + commands[i].command + " ;;\n";
   script += "esac\necho \"trs-render: no task $SLURM_ARRAY_TASK_ID in this job array\" >&2\nexit 1\n";
   return script;
+}
+
+/// `path` as sbatch's --output pattern: Slurm reads % as a replacement symbol (%% is one %), and a
+/// backslash anywhere as "no replacements", which would send every task's log to one file.
+std::string output_pattern(const fs::path& folder, const std::string& name) {
+  const std::string text = folder.string();
+  if (text.find('\\') != std::string::npos)
+    throw std::runtime_error("--out: the folder " + printable(text) +
+                             " holds a backslash, which makes Slurm write every task's log to one file "
+                             "(its --output patterns take none)");
+  std::string escaped;
+  for (const char c : text) escaped += c == '%' ? "%%" : std::string(1, c);
+  return escaped + "/" + name;
+}
+
+/// sbatch's command line but the batch script: its own options, then the user's (--sbatch, which
+/// come later and so win). Throws where the output folder cannot be a log pattern.
+std::vector<std::string> sbatch_arguments(const RenderOptions::Submission& submission, std::size_t tasks,
+                                          const fs::path& folder) {
+  std::vector<std::string> words = {"sbatch", "--parsable"};
+  if (submission.wait) words.push_back("--wait");
+  words.push_back("--job-name=trs-render");
+  words.push_back("--array=0-" + std::to_string(tasks - 1));
+  words.push_back("--output=" + output_pattern(folder, "trs-render-%A_%a.log"));
+  words.insert(words.end(), submission.sbatch.begin(), submission.sbatch.end());
+  return words;
 }
 
 /// A file that is removed when this goes out of scope.
@@ -45,44 +75,61 @@ struct TemporaryFile {
   }
 };
 
-/// A command's standard output, line by line, through the shell.
-class Pipe {
+/// A program run from the PATH with `arguments` (the first its name), no shell between: its
+/// standard output read line by line through a pipe, its standard error this process's.
+class Program {
  public:
-  explicit Pipe(const std::string& command) : file_(popen(command.c_str(), "r")) {
-    if (!file_) throw std::runtime_error("cannot run " + command);
+  explicit Program(const std::vector<std::string>& arguments) {
+    int ends[2];
+    if (pipe2(ends, O_CLOEXEC) != 0) throw std::runtime_error("cannot run " + arguments[0] + ": " + std::strerror(errno));
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, ends[1], STDOUT_FILENO);
+    std::vector<char*> argv;
+    for (const std::string& a : arguments) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    const int spawned = posix_spawnp(&pid_, argv[0], &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    close(ends[1]);
+    if (spawned != 0) {
+      close(ends[0]);
+      throw std::runtime_error("cannot run " + arguments[0] + ": " +
+                               (spawned == ENOENT ? "no " + arguments[0] + " on the PATH, is Slurm installed?"
+                                                  : std::string(std::strerror(spawned))));
+    }
+    output_ = fdopen(ends[0], "r");
+    if (!output_) close(ends[0]);  // line() then reads nothing
   }
-  ~Pipe() {
-    if (file_) pclose(file_);
+  ~Program() {
+    if (pid_ > 0) wait();
   }
-  Pipe(const Pipe&) = delete;
-  Pipe& operator=(const Pipe&) = delete;
+  Program(const Program&) = delete;
+  Program& operator=(const Program&) = delete;
 
   /// The next line, without its newline; none at the end.
   std::optional<std::string> line() {
     std::string text;
-    for (int c; (c = fgetc(file_)) != EOF;) {
+    for (int c; output_ && (c = fgetc(output_)) != EOF;) {
       if (c == '\n') return text;
       text.push_back(char(c));
     }
     return text.empty() ? std::nullopt : std::optional(text);
   }
-  /// Waits for the command: its exit status, 128 + the signal that killed it.
-  int close() {
-    const int status = pclose(file_);
-    file_ = nullptr;
+  /// Waits for the program: its exit status, 128 + the signal that killed it.
+  int wait() {
+    if (output_) fclose(output_);
+    output_ = nullptr;
+    int status = 0;
+    while (waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
+    }
+    pid_ = -1;
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   }
 
  private:
-  FILE* file_;
+  pid_t pid_ = -1;
+  FILE* output_ = nullptr;
 };
-
-/// Whether every output of animation frame `frame` is written.
-bool frame_written(const RenderOptions& options, std::int64_t frame) {
-  for (const fs::path& pattern : outputs(options))
-    if (!fs::exists(output(options, pattern, frame))) return false;
-  return true;
-}
 
 }  // namespace
 
@@ -93,11 +140,11 @@ SlurmOutcome submit_to_slurm(const RenderOptions& options, const fs::path& progr
   SlurmOutcome outcome;
   outcome.job.tasks = commands.size();
   outcome.job.log_pattern = folder / "trs-render-%A_%a.log";
+  std::vector<std::string> arguments = sbatch_arguments(submission, commands.size(), folder);
   fs::create_directories(folder);
-  const TemporaryFile script(folder, batch_script(commands, outcome.job.log_pattern));
-  const std::string command = "sbatch --parsable" + std::string(submission.wait ? " --wait" : "") + " " +
-                              submission.sbatch + " " + shell_quoted(script.path.string());
-  Pipe sbatch(command);
+  const TemporaryFile script(folder, batch_script(commands));
+  arguments.push_back(script.path.string());
+  Program sbatch(arguments);
   if (std::optional<std::string> line = sbatch.line()) {
     outcome.job.id = line->substr(0, line->find(';'));  // "id;cluster"
     progress << "trs-render: Slurm job " << outcome.job.id << ": frames " << to_string(*options.frames) << " in "
@@ -106,7 +153,7 @@ SlurmOutcome submit_to_slurm(const RenderOptions& options, const fs::path& progr
   }
   while (sbatch.line()) {
   }
-  outcome.sbatch_status = sbatch.close();
+  outcome.sbatch_status = sbatch.wait();
   if (outcome.job.id.empty()) {
     throw std::runtime_error("sbatch submitted nothing (status " + std::to_string(outcome.sbatch_status) +
                              (outcome.sbatch_status == 127 ? ": no sbatch on the PATH, is Slurm installed?" : "") + ")");

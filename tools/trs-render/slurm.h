@@ -30,10 +30,12 @@ struct SlurmOutcome {
   std::vector<std::size_t> missing_tasks;
 };
 
-/// Submits options.frames (options.submit set) through `sbatch` as the shell finds it, the task
-/// commands run by `program` (an absolute path: the nodes run it). Tells `progress` the job id
-/// and where its outputs and logs go as soon as Slurm has it; with options.submit->wait, then
-/// waits for the array to end. Throws std::runtime_error when sbatch fails or cannot be run.
+/// Submits options.frames (options.submit set) through the `sbatch` on the PATH, run without a
+/// shell: its options and options.submit->sbatch's words as its arguments, a batch script that
+/// holds the task commands alone, each run by `program` (an absolute path: the nodes run it).
+/// Tells `progress` the job id and where its outputs and logs go as soon as Slurm has it; with
+/// options.submit->wait, then waits for the array to end. Throws std::runtime_error when sbatch
+/// fails or cannot be run, or the output folder cannot be a log pattern of Slurm's.
 SlurmOutcome submit_to_slurm(const RenderOptions& options, const std::filesystem::path& program,
                              std::ostream& progress);
 
