@@ -94,6 +94,13 @@ SOURCES = {
         "commit": "1e0c5cdbdfec7b632b9aa1f498f7016b0d210779",
         "note": "Babylon.js meshes library; files not otherwise marked are CC BY 4.0 (its README)",
     },
+    "playcanvas": {
+        "mirror": "playcanvas+engine",
+        "repo": "playcanvas/engine",
+        "commit": "0aaef5e432c4797ed23c1f966e2cc43232ec0613",
+        "note": "the PlayCanvas engine; its examples' models, each beside a .txt of its title, "
+                "author, source and licence",
+    },
 }
 
 # Per asset: where it comes from, who made it, its licence, and how it is staged.
@@ -225,6 +232,18 @@ ASSETS = {
         "strength": 150.0,
         # Inside, looking down the corridor: its walls, floor and ceiling fill the frame.
         "camera": {"eye": [0.0, 1.55, -6.6], "target": [0.0, 1.35, 0.0], "yfov": 60.0},
+    },
+    "love-neon": {
+        "source": "playcanvas",
+        "path": "examples/assets/models/love.glb",
+        "title": "Love neon sign 02",
+        "author": "daysena (https://sketchfab.com/daysena)",
+        "licence": "CC BY 4.0",
+        "kind": "object",
+        "size": 1.0,
+        "yaw": -90.0,
+        "strength": 200.0,
+        "camera": {"eye": [0.45, 0.35, 1.5], "target": [0.0, 0.12, 0.0], "yfov": 55.0},
     },
 }
 
