@@ -101,6 +101,13 @@ SOURCES = {
         "note": "the PlayCanvas engine; its examples' models, each beside a .txt of its title, "
                 "author, source and licence",
     },
+    "needle-samples": {
+        "mirror": "needle-tools+needle-engine-samples",
+        "repo": "needle-tools/needle-engine-samples",
+        "commit": "a623e96180099bc7a1c494ec17157843540c68b7",
+        "note": "Needle Engine's sample scenes; MIT, (c) 2022-2023 Needle Tools GmbH (package/License.md, "
+                "the repository's licence file), where an asset's folder names no other licence",
+    },
 }
 
 # Per asset: where it comes from, who made it, its licence, and how it is staged.
@@ -244,6 +251,16 @@ ASSETS = {
         "yaw": -90.0,
         "strength": 200.0,
         "camera": {"eye": [0.45, 0.35, 1.5], "target": [0.0, 0.12, 0.0], "yfov": 55.0},
+    },
+    "glass-house": {
+        "source": "needle-samples",
+        "path": "package/Runtime/Lightmaps/Assets/Objects/House/house.glb",
+        "title": "House (Needle Engine lightmaps sample)",
+        "author": "Needle Tools GmbH",
+        "licence": "MIT",
+        "kind": "scene",
+        "strength": 40.0,
+        "camera": {"eye": [4.8, 1.7, -0.7], "target": [-1.0, 1.3, -0.2], "yfov": 60.0},
     },
 }
 
