@@ -13,12 +13,19 @@ What it does to each asset (scenes/real/README.md lists it per asset):
 - .glb files become .gltf + .bin + image files; the asset's geometry is copied into
   `<name>.bin` (only the accessors the kept meshes use, bytes unchanged), the room's into
   `room.bin`.
-- Emission textures are kept byte for byte at their native size. Base-colour and
-  metallic-roughness textures are downscaled to at most NON_EMISSIVE_MAX texels a side and stored
-  as JPEG. Normal, occlusion, clearcoat, sheen and transmission textures and extensions are
-  dropped (the corpus measures light sampling: it keeps what lights the scene and its base
-  colours, small), as are TANGENT attributes, animations and the asset's own cameras where a
-  staging camera replaces them. A gzipped .glb is read unzipped.
+- Emission textures are kept byte for byte at their native size. The other textures the
+  renderer reads (base colour, metallic-roughness, and those of the material extensions in
+  MATERIAL_EXTENSIONS: transmission, volume, IOR, specular, clearcoat, sheen) are downscaled to
+  at most NON_EMISSIVE_MAX texels a side and stored as JPEG, or as PNG with their alpha where
+  that alpha is read (a base colour whose alphaMode is MASK or BLEND, KHR_materials_specular's
+  specularTexture, KHR_materials_sheen's sheenRoughnessTexture); their texCoord and
+  KHR_texture_transform are kept. Normal, occlusion and clearcoat-normal textures are dropped
+  (the corpus measures light sampling: it keeps what lights the scene and what the light
+  passes through or reflects from, small), as are other material extensions, TANGENT
+  attributes, animations and the asset's own cameras where a staging camera replaces them.
+  alphaMode and the base colour's alpha are kept (trs-render reads MASK and BLEND as coverage),
+  but where an asset bakes that alpha into its emission map. extensionsRequired is kept only for
+  the extensions in REQUIRABLE. A gzipped .glb is read unzipped.
 - A lone object is scaled to a set size, turned about the vertical, set on a grey plinth in a
   closed grey room (Lambertian, base colour 0.5), and seen by a new perspective camera. Whole
   scenes keep their own geometry and get a camera.
@@ -41,6 +48,26 @@ import OpenImageIO as oiio
 
 NON_EMISSIVE_MAX = 1024
 JPEG_QUALITY = 88
+
+# Material extensions kept on every asset, with the textures each one names: True where the
+# extension reads the texture's alpha channel (the image then keeps its alpha), False where it
+# reads colour or data channels only, None for a texture dropped as normal maps are.
+MATERIAL_EXTENSIONS = {
+    "KHR_materials_emissive_strength": {},
+    "KHR_materials_ior": {},
+    "KHR_materials_transmission": {"transmissionTexture": False},
+    "KHR_materials_volume": {"thicknessTexture": False},
+    "KHR_materials_specular": {"specularTexture": True, "specularColorTexture": False},
+    "KHR_materials_clearcoat": {"clearcoatTexture": False, "clearcoatRoughnessTexture": False,
+                                "clearcoatNormalTexture": None},
+    "KHR_materials_sheen": {"sheenColorTexture": False, "sheenRoughnessTexture": True},
+}
+
+# Extensions a staged file may still require, where its source did; other requirements are
+# dropped (and the asset's changes say so).
+REQUIRABLE = {"KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_materials_ior",
+              "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_volume",
+              "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_lights_punctual"}
 
 SOURCES = {
     "khronos-2023": {
@@ -67,13 +94,29 @@ SOURCES = {
         "commit": "1e0c5cdbdfec7b632b9aa1f498f7016b0d210779",
         "note": "Babylon.js meshes library; files not otherwise marked are CC BY 4.0 (its README)",
     },
+    "playcanvas": {
+        "mirror": "playcanvas+engine",
+        "repo": "playcanvas/engine",
+        "commit": "0aaef5e432c4797ed23c1f966e2cc43232ec0613",
+        "note": "the PlayCanvas engine; its examples' models, each beside a .txt of its title, "
+                "author, source and licence",
+    },
+    "needle-samples": {
+        "mirror": "needle-tools+needle-engine-samples",
+        "repo": "needle-tools/needle-engine-samples",
+        "commit": "a623e96180099bc7a1c494ec17157843540c68b7",
+        "note": "Needle Engine's sample scenes; MIT, (c) 2022-2023 Needle Tools GmbH (package/License.md, "
+                "the repository's licence file), where an asset's folder names no other licence",
+    },
 }
 
 # Per asset: where it comes from, who made it, its licence, and how it is staged.
 #   kind: "object" (staged in a grey room) or "scene" (kept whole, a camera added)
 #   size: the object's largest extent after scaling (m); yaw: degrees about +Y
 #   strength: KHR_materials_emissive_strength applied to every emissive material (None: keep)
-#   drop_meshes: mesh names left out; missing: factors for textures absent from the snapshot
+#   drop_nodes: node names whose meshes are left out
+#   missing: per image absent from the snapshot, the factors that replace it (set on the object
+#     that held the texture: pbrMetallicRoughness, or the material extension)
 #   camera: eye and target, relative to the object's base centre (objects) or absolute (scenes)
 ASSETS = {
     "damaged-helmet": {
@@ -127,7 +170,6 @@ ASSETS = {
         "size": 0.9,
         "yaw": 0.0,
         "strength": 4000.0,
-        "drop_meshes": ["Glass"],
         "camera": {"eye": [0.9, 0.7, 1.5], "target": [0.0, 0.1, 0.0], "yfov": 55.0},
     },
     "energy-ball": {
@@ -141,7 +183,7 @@ ASSETS = {
         "yaw": 0.0,
         "lift": 0.15,
         "strength": 36.0,
-        # The two alpha-blended outer shells (energylayer1, energylayer2) would be opaque here.
+        # The two alpha-blended outer shells (energylayer1, energylayer2) are left out: the core alone.
         "drop_nodes": ["energylayer1", "energylayer2"],
         "camera": {"eye": [0.7, 0.6, 1.7], "target": [0.0, 0.2, 0.0], "yfov": 55.0},
     },
@@ -157,8 +199,8 @@ ASSETS = {
         "plinth": 0.0,
         "lift": 0.6,
         "strength": 16.0,
-        # The runes are cut out by the base colour's alpha (BLEND); trs-render reads no alpha,
-        # so the emission map is multiplied by that alpha.
+        # The runes are cut out by the base colour's alpha (BLEND); the disk is staged opaque,
+        # its emission map multiplied by that alpha (and its base colour too, as read).
         "emission_times_base_alpha": True,
         "camera": {"eye": [1.2, 1.7, 1.7], "target": [0.0, 0.35, 0.0], "yfov": 60.0},
     },
@@ -180,8 +222,6 @@ ASSETS = {
         "licence": "CC BY 4.0",
         "kind": "scene",
         "strength": 500.0,
-        # The glass dome (KHR_materials_transmission) would be opaque to trs-render.
-        "drop_mesh_materials": ["glass"],
         "missing": {
             "textures/BOT1_metallicRoughness.png": {"metallicFactor": 0.0, "roughnessFactor": 0.6},
             "textures/BOT2_metallicRoughness.png": {"metallicFactor": 0.0, "roughnessFactor": 0.6},
@@ -199,6 +239,28 @@ ASSETS = {
         "strength": 150.0,
         # Inside, looking down the corridor: its walls, floor and ceiling fill the frame.
         "camera": {"eye": [0.0, 1.55, -6.6], "target": [0.0, 1.35, 0.0], "yfov": 60.0},
+    },
+    "love-neon": {
+        "source": "playcanvas",
+        "path": "examples/assets/models/love.glb",
+        "title": "Love neon sign 02",
+        "author": "daysena (https://sketchfab.com/daysena)",
+        "licence": "CC BY 4.0",
+        "kind": "object",
+        "size": 1.0,
+        "yaw": -90.0,
+        "strength": 200.0,
+        "camera": {"eye": [0.45, 0.35, 1.5], "target": [0.0, 0.12, 0.0], "yfov": 55.0},
+    },
+    "glass-house": {
+        "source": "needle-samples",
+        "path": "package/Runtime/Lightmaps/Assets/Objects/House/house.glb",
+        "title": "House (Needle Engine lightmaps sample)",
+        "author": "Needle Tools GmbH",
+        "licence": "MIT",
+        "kind": "scene",
+        "strength": 40.0,
+        "camera": {"eye": [4.8, 1.7, -0.7], "target": [-1.0, 1.3, -0.2], "yfov": 60.0},
     },
 }
 
@@ -342,14 +404,18 @@ def look_at_quat(eye, target):
 # images
 
 
-def read_pixels(data):
-    """Decodes image bytes with OpenImageIO (through a temporary file: ImageBuf reads files)."""
+def read_pixels(data, unassociated=False):
+    """Decodes image bytes with OpenImageIO (through a temporary file: ImageBuf reads files).
+    OpenImageIO multiplies colour by alpha as it reads; `unassociated` keeps the colour as stored."""
     import tempfile
     with tempfile.NamedTemporaryFile(suffix=".img", delete=False) as f:
         f.write(data)
         name = f.name
     try:
-        buf = oiio.ImageBuf(name)
+        config = oiio.ImageSpec()
+        if unassociated:
+            config.attribute("oiio:UnassociatedAlpha", 1)
+        buf = oiio.ImageBuf(name, 0, 0, config)
         px = buf.get_pixels(oiio.UINT8)
         if px is None or buf.has_error:
             raise RuntimeError(buf.geterror())
@@ -358,11 +424,15 @@ def read_pixels(data):
         os.unlink(name)
 
 
-def write_pixels(path, px, quality=None):
+def write_pixels(path, px, quality=None, unassociated=False):
+    """Writes 8-bit pixels; `unassociated`: colour and alpha as given (else OpenImageIO divides
+    colour by alpha as it writes a PNG with alpha)."""
     h, w, c = px.shape
     spec = oiio.ImageSpec(w, h, c, oiio.UINT8)
     if quality is not None:
         spec.attribute("Compression", f"jpeg:{quality}")
+    if unassociated:
+        spec.attribute("oiio:UnassociatedAlpha", 1)
     buf = oiio.ImageBuf(spec)
     buf.set_pixels(oiio.ROI(0, w, 0, h), np.ascontiguousarray(px))
     if not buf.write(path):
@@ -386,18 +456,32 @@ def downscaled(px, largest):
 # staging
 
 
+def texture_slots(m):
+    """The texture references a material keeps besides its emission map: (owner, key, alpha),
+    where owner[key] is the textureInfo, owner holds the factors that scale it, and alpha says
+    whether the image's alpha channel is read (a base colour's is, under MASK or BLEND)."""
+    pbr = m.get("pbrMetallicRoughness", {})
+    slots = [(pbr, "baseColorTexture", m.get("alphaMode", "OPAQUE") != "OPAQUE"),
+             (pbr, "metallicRoughnessTexture", False)]
+    for name, textures in MATERIAL_EXTENSIONS.items():
+        ext = m.get("extensions", {}).get(name)
+        if ext is not None:
+            slots += [(ext, key, alpha) for key, alpha in textures.items() if alpha is not None]
+    return [(owner, key, alpha) for owner, key, alpha in slots if key in owner]
+
+
+def uv_set(info):
+    """The TEXCOORD set a textureInfo reads (KHR_texture_transform's texCoord overrides)."""
+    transform = info.get("extensions", {}).get("KHR_texture_transform", {})
+    return transform.get("texCoord", info.get("texCoord", 0))
+
+
 def prune(gltf, spec):
     """Leaves out dropped meshes, cameras, animations and what the renderer ignores."""
-    names = set(spec.get("drop_meshes", []))
     node_names = set(spec.get("drop_nodes", []))
-    mats = set(spec.get("drop_mesh_materials", []))
-    material_names = [m.get("name") for m in gltf.get("materials", [])]
     for node in gltf["nodes"]:
-        if "mesh" in node:
-            mesh = gltf["meshes"][node["mesh"]]
-            prim_mats = {material_names[p["material"]] for p in mesh["primitives"] if "material" in p}
-            if mesh.get("name") in names or node.get("name") in node_names or (prim_mats & mats):
-                del node["mesh"]
+        if "mesh" in node and node.get("name") in node_names:
+            del node["mesh"]
         if "camera" in node and spec["kind"] == "object":
             del node["camera"]
     # Still geometry only: animations go, and skinned meshes keep their bind pose.
@@ -426,8 +510,13 @@ def prune(gltf, spec):
         for p in mesh["primitives"]:
             assert p.get("mode", 4) == 4
             p.pop("targets", None)
-            p["attributes"] = {k: v for k, v in p["attributes"].items()
-                               if k in ("POSITION", "NORMAL", "TEXCOORD_0")}
+            keep = {"POSITION", "NORMAL", "TEXCOORD_0"}
+            if "material" in p:  # and TEXCOORD_1 where a kept texture reads it
+                m = gltf["materials"][p["material"]]
+                infos = [owner[key] for owner, key, _ in texture_slots(m)]
+                infos += [m["emissiveTexture"]] if "emissiveTexture" in m else []
+                keep |= {f"TEXCOORD_{uv_set(info)}" for info in infos}
+            p["attributes"] = {k: v for k, v in p["attributes"].items() if k in keep}
 
 
 def compact_geometry(gltf, buffers):
@@ -477,47 +566,57 @@ def stage_materials(gltf, images, spec, out_dir):
     uri_of_texture = {}
     for t, tex in enumerate(gltf.get("textures", [])):
         uri_of_texture[t] = images[tex["source"]][0]
-    roles = {}  # texture index -> set of roles
     for m in gltf.get("materials", []):
         m.pop("normalTexture", None)
         m.pop("occlusionTexture", None)
         ext = m.get("extensions", {})
-        m["extensions"] = {k: v for k, v in ext.items() if k == "KHR_materials_emissive_strength"}
+        m["extensions"] = {k: v for k, v in ext.items() if k in MATERIAL_EXTENSIONS}
+        for name, textures in MATERIAL_EXTENSIONS.items():
+            for key, alpha in textures.items():
+                if alpha is None:
+                    m["extensions"].get(name, {}).pop(key, None)
         pbr = m.setdefault("pbrMetallicRoughness", {})
-        for slot, role in (("baseColorTexture", "base"), ("metallicRoughnessTexture", "mr")):
-            if slot in pbr:
-                uri = uri_of_texture[pbr[slot]["index"]]
-                if images[gltf["textures"][pbr[slot]["index"]]["source"]][1] is None:
-                    if uri not in missing:
-                        sys.exit(f"{uri}: absent from the snapshot and no replacement given")
-                    del pbr[slot]
-                    pbr.update(missing[uri])
-                else:
-                    roles.setdefault(pbr[slot]["index"], set()).add(role)
+        if spec.get("emission_times_base_alpha") and "emissiveTexture" in m:
+            # The base colour's alpha is baked into the emission map; the surface is opaque.
+            m["_bake_alpha_from"] = pbr["baseColorTexture"]["index"]
+            if m.get("alphaMode") == "BLEND":
+                m["alphaMode"] = "OPAQUE"
+        # A texture absent from the snapshot: its factors replace it (spec["missing"]).
+        for owner, slot, _ in texture_slots(m):
+            uri = uri_of_texture[owner[slot]["index"]]
+            if images[gltf["textures"][owner[slot]["index"]]["source"]][1] is None:
+                if uri not in missing:
+                    sys.exit(f"{uri}: absent from the snapshot and no replacement given")
+                del owner[slot]
+                owner.update(missing[uri])
+        for owner, slot, _ in texture_slots(m):
+            assert uv_set(owner[slot]) in (0, 1), f"{slot} reads TEXCOORD_{uv_set(owner[slot])}"
+        emits = "emissiveTexture" in m or any(v > 0 for v in m.get("emissiveFactor", [0, 0, 0]))
         if "emissiveTexture" in m:
-            assert m["emissiveTexture"].get("texCoord", 0) == 0
-            roles.setdefault(m["emissiveTexture"]["index"], set()).add("emissive")
-            if spec.get("strength") is not None:
-                m["extensions"]["KHR_materials_emissive_strength"] = {"emissiveStrength": spec["strength"]}
-            if spec.get("emission_times_base_alpha"):
-                m["_bake_alpha_from"] = pbr["baseColorTexture"]["index"]
+            assert uv_set(m["emissiveTexture"]) == 0
+        if emits and spec.get("strength") is not None:
+            m["extensions"]["KHR_materials_emissive_strength"] = {"emissiveStrength": spec["strength"]}
         if not m["extensions"]:
             del m["extensions"]
-        if m.get("alphaMode") == "BLEND":
-            m["alphaMode"] = "OPAQUE"  # trs-render reads no alpha; say so in the file
     # Images written once per (image, use): emission native, the rest downscaled; textures
     # renumbered per (texture, use), so one glTF texture serving both gets two.
     img_written, new_images, report = {}, [], []
     new_textures, tex_written, new_samplers, sampler_map = [], {}, [], {}
 
-    def texture_for(old, emissive, bake):
+    def texture_for(old, emissive, bake, alpha=False, stored=False):
+        """`alpha`: the image keeps its alpha; `stored`: its colour is read as stored, not
+        multiplied by its alpha as OpenImageIO reads it (data textures; a base colour whose alpha
+        is not read is kept multiplied, as the spell disk's cut-outs are)."""
         tex = gltf["textures"][old]
         name, data = images[tex["source"]]
-        px = read_pixels(data)
-        h, w = px.shape[:2]
+        px = read_pixels(data, unassociated=alpha or stored)
+        h, w, c = px.shape
+        alpha = alpha and c in (2, 4)  # an image without alpha reads as opaque: nothing to keep
+        premultiplied = c in (2, 4) and not (alpha or stored)
         base = os.path.basename(name)
         as_is = bake is None and (emissive or max(w, h) <= NON_EMISSIVE_MAX)
-        key = (tex["source"], "as-is" if as_is else "baked" if emissive else "small")
+        key = (tex["source"], "as-is" if as_is else "baked" if emissive else "alpha" if alpha
+               else "premultiplied" if premultiplied else "small")
         if key not in img_written:
             if as_is:
                 out_name = base
@@ -533,13 +632,22 @@ def stage_materials(gltf, images, spec, out_dir):
                 write_pixels(os.path.join(out_dir, out_name), baked)
                 report.append(f"{out_name}: {w} x {h}, emission multiplied by the base colour's alpha")
             else:
-                small = downscaled(px[..., :3], NON_EMISSIVE_MAX)
-                out_name = os.path.splitext(base)[0] + ".jpg"
-                write_pixels(os.path.join(out_dir, out_name), small, JPEG_QUALITY)
-                report.append(f"{out_name}: {w} x {h} -> {small.shape[1]} x {small.shape[0]} JPEG")
+                colour = px if alpha else px[..., :3] if c >= 3 else px[..., :1]
+                small = downscaled(colour, NON_EMISSIVE_MAX)
+                stem, ext = os.path.splitext(base)[0], ".png" if alpha else ".jpg"
+                out_name = stem + ext
+                if out_name in {im["uri"] for im in new_images}:  # the same image at another use
+                    out_name = f"{stem}_{NON_EMISSIVE_MAX}{ext}"
+                if alpha:
+                    write_pixels(os.path.join(out_dir, out_name), small, unassociated=True)
+                else:
+                    write_pixels(os.path.join(out_dir, out_name), small, JPEG_QUALITY)
+                report.append(f"{out_name}: {w} x {h} -> {small.shape[1]} x {small.shape[0]} "
+                              + ("PNG (alpha kept)" if alpha else "JPEG"))
+            assert out_name not in {im["uri"] for im in new_images}, out_name
             img_written[key] = len(new_images)
             new_images.append({"uri": out_name})
-        tkey = (old, emissive, bake)
+        tkey = (old, emissive, bake, key[1])
         if tkey not in tex_written:
             t = {"source": img_written[key]}
             if "sampler" in tex:
@@ -553,10 +661,9 @@ def stage_materials(gltf, images, spec, out_dir):
 
     for m in gltf.get("materials", []):
         bake = m.pop("_bake_alpha_from", None)
-        pbr = m["pbrMetallicRoughness"]
-        for info in (pbr.get("baseColorTexture"), pbr.get("metallicRoughnessTexture")):
-            if info is not None:
-                info["index"] = texture_for(info["index"], False, None)
+        for owner, slot, alpha in texture_slots(m):
+            owner[slot]["index"] = texture_for(owner[slot]["index"], False, None, alpha,
+                                               stored=slot != "baseColorTexture")
         if "emissiveTexture" in m:
             m["emissiveTexture"]["index"] = texture_for(m["emissiveTexture"]["index"], True, bake)
     gltf["textures"] = new_textures
@@ -650,11 +757,12 @@ def add_camera(gltf, eye, target, yfov_deg):
 
 
 def count_triangles(gltf):
-    """(total, emitting) triangles over the node instances of the default scene."""
-    total = emit = 0
+    """Triangles over the node instances of the default scene: (total, with an emission map,
+    with a constant emission, transmissive)."""
+    total = emit = constant = clear = 0
 
     def visit(n):
-        nonlocal total, emit
+        nonlocal total, emit, constant, clear
         node = gltf["nodes"][n]
         if "mesh" in node:
             for p in gltf["meshes"][node["mesh"]]["primitives"]:
@@ -662,14 +770,19 @@ def count_triangles(gltf):
                     gltf["accessors"][p["attributes"]["POSITION"]]["count"] // 3
                 total += k
                 m = gltf["materials"][p["material"]] if "material" in p else {}
-                if "emissiveTexture" in m and any(v > 0 for v in m.get("emissiveFactor", [0, 0, 0])):
-                    emit += k
+                if any(v > 0 for v in m.get("emissiveFactor", [0, 0, 0])):
+                    if "emissiveTexture" in m:
+                        emit += k
+                    else:
+                        constant += k
+                if "KHR_materials_transmission" in m.get("extensions", {}):
+                    clear += k
         for c in node.get("children", []):
             visit(c)
 
     for n in gltf["scenes"][gltf.get("scene", 0)]["nodes"]:
         visit(n)
-    return total, emit
+    return total, emit, constant, clear
 
 
 def read_accessor(gltf, bins, index):
@@ -749,7 +862,7 @@ def stage(name, spec, mirrors, out_root):
     prune(gltf, spec)
     geometry = compact_geometry(gltf, buffers)
     report = stage_materials(gltf, images, spec, out_dir)
-    gltf.pop("extensionsRequired", None)
+    required = gltf.pop("extensionsRequired", [])
     scene = gltf["scenes"][gltf.get("scene", 0)]
     gltf["scene"] = gltf.get("scene", 0)
     corners = world_corners(gltf)
@@ -770,6 +883,10 @@ def stage(name, spec, mirrors, out_root):
                 "rotation": mat_to_quat(rot), "scale": [round(scale, 9)] * 3}
         gltf["nodes"].append(root)
         scene["nodes"] = [len(gltf["nodes"]) - 1]
+        for m in gltf.get("materials", []):  # a volume's attenuation distance is in world units
+            volume = m.get("extensions", {}).get("KHR_materials_volume", {})
+            if "attenuationDistance" in volume:
+                volume["attenuationDistance"] = round(volume["attenuationDistance"] * scale, 9)
         room_blob, room_node, room_tris = add_room(gltf, plinth)
         scene["nodes"].append(room_node)
         anchor = base
@@ -799,14 +916,17 @@ def stage(name, spec, mirrors, out_root):
     used = set()
     for m in gltf.get("materials", []):
         used |= set(m.get("extensions", {}))
-        for info in (m["pbrMetallicRoughness"].get("baseColorTexture"),
-                     m["pbrMetallicRoughness"].get("metallicRoughnessTexture")):
-            if info and "extensions" in info:
-                used |= set(info["extensions"])
+        infos = [owner[key] for owner, key, _ in texture_slots(m)]
+        infos += [m["emissiveTexture"]] if "emissiveTexture" in m else []
+        for info in infos:
+            used |= set(info.get("extensions", {}))
     if used:
         gltf["extensionsUsed"] = sorted(used)
     else:
         gltf.pop("extensionsUsed", None)
+    required = sorted(set(required) & used & REQUIRABLE)
+    if required:
+        gltf["extensionsRequired"] = required
     gltf["asset"] = {
         "version": "2.0",
         "generator": "tools/make_real_scenes.py",
@@ -815,9 +935,9 @@ def stage(name, spec, mirrors, out_root):
                    "source": f"https://github.com/{src['repo']}/blob/{src['commit']}/{spec['path']}",
                    "changes": "staged for trs-render by tools/make_real_scenes.py; see scenes/real/README.md"},
     }
-    total, emit = count_triangles(gltf)
-    order = ["asset", "extensionsUsed", "scene", "scenes", "nodes", "cameras", "meshes", "materials",
-             "textures", "images", "samplers", "accessors", "bufferViews", "buffers"]
+    total, emit, constant, clear = count_triangles(gltf)
+    order = ["asset", "extensionsUsed", "extensionsRequired", "scene", "scenes", "nodes", "cameras",
+             "meshes", "materials", "textures", "images", "samplers", "accessors", "bufferViews", "buffers"]
     doc = {k: gltf[k] for k in order if k in gltf}
     with open(os.path.join(out_dir, name + ".gltf"), "w") as f:
         json.dump(doc, f, indent=1)
@@ -827,7 +947,9 @@ def stage(name, spec, mirrors, out_root):
                 "width = 320\nheight = 180\nspp = 16\nmax-depth = 3\nlights = \"auto\"\n")
     size = sum(os.path.getsize(os.path.join(out_dir, f)) for f in os.listdir(out_dir))
     lit = count_emitting(out_dir, name)
-    print(f"{name}: {total} triangles, {emit} with an emission map, {lit} over non-black texels; "
+    extra = (f", {constant} with a constant emission" if constant else "") + \
+        (f", {clear} transmissive" if clear else "")
+    print(f"{name}: {total} triangles, {emit} with an emission map, {lit} over non-black texels{extra}; "
           f"{placed}; {size / 1e6:.2f} MB")
     for line in report:
         print("   ", line)
