@@ -60,6 +60,17 @@ std::vector<unsigned char> encode(const char* format, const OIIO::ImageSpec& spe
   return bytes;
 }
 
+/// What every reader is opened with: alpha as stored, the colour channels not multiplied by it
+/// (OpenImageIO associates PNG's alpha by default; glTF's textures are not premultiplied).
+const OIIO::ImageSpec& reader_config() {
+  static const OIIO::ImageSpec config = [] {
+    OIIO::ImageSpec spec;
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    return spec;
+  }();
+  return config;
+}
+
 }  // namespace
 
 struct Decoder::State {
@@ -68,7 +79,7 @@ struct Decoder::State {
 };
 
 Decoder::Decoder(const std::filesystem::path& file) : state_(std::make_unique<State>()) {
-  state_->input = OIIO::ImageInput::open(file.string());
+  state_->input = OIIO::ImageInput::open(file.string(), &reader_config());
   if (!state_->input) throw CodecError(OIIO::geterror());
   header_ = header_of(*state_->input);
 }
@@ -77,7 +88,11 @@ Decoder::Decoder(std::span<const unsigned char> bytes, const std::string& format
     : state_(std::make_unique<State>()) {
   state_->memory = std::make_unique<OIIO::Filesystem::IOMemReader>(bytes.data(), bytes.size());
   // The extension picks the first reader to try; OpenImageIO tries the others after it.
-  state_->input = OIIO::ImageInput::open("embedded." + format, nullptr, state_->memory.get());
+  // The proxy rides in the configuration: OpenImageIO 2.4 opens no proxy given beside one.
+  OIIO::ImageSpec config = reader_config();
+  void* proxy = state_->memory.get();
+  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  state_->input = OIIO::ImageInput::open("embedded." + format, &config);
   if (!state_->input) {
     const std::string error = OIIO::geterror();
     const auto reader = OIIO::ImageInput::create(format);
