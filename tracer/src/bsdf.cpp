@@ -1,18 +1,32 @@
-// glTF 2.0 metallic-roughness BSDF.
+// The glTF 2.0 material as a BSDF, layered as the specification's graph layers it:
 //
-// Specular: GGX (Trowbridge-Reitz) with Smith height-correlated masking-shadowing and Schlick
-// Fresnel, F0 = mix(0.04, base_color, metallic), the dielectric share weighted by `specular`.
-// Diffuse: Lambert with albedo base_color (1 - metallic) (1 - max_c F_c(n.wo)). Weighting by the Fresnel at n.wo rather than at
-// the half vector takes from the diffuse the energy the specular layer reflects at grazing wo, which
-// the half-vector form does not (a white dielectric of roughness 0.1 would reflect 1.48 at n.wo 0.1);
-// the price is that the diffuse term is not reciprocal. Taking the largest channel bounds every
-// channel alike. The bound is not exact: the visible normals average a Schlick F that is convex in
-// wo.h, so the albedo can exceed 1 by about 0.0013 (white dielectric, roughness 0.3, n.wo 0.6).
+//   coated  = clearcoat over (sheen over material)
+//   material = mix(dielectric, metal, metallic)
+//   metal   = Schlick(f0 = base colour) GGX
+//   dielectric = fresnel_mix(layer = GGX reflection,
+//                            base = mix(diffuse, base colour times the GGX transmission, transmission))
 //
-// Sampling picks a lobe with probability proportional to an albedo estimate (luminance of F(n.wo)
-// against the diffuse albedo), then draws the GGX visible normals (Heitz 2018, "Sampling the GGX
-// distribution of visible normals") or the cosine. Weight and pdf are those of the mixture (one-sample
-// MIS over the lobes), computed by the same code as eval() and pdf().
+// Each glossy lobe is GGX with Smith's height-correlated masking, its Fresnel Schlick's at the
+// microfacet (KHR_materials_specular's f0 and f90; KHR_materials_volume's dense-side cosine and
+// total internal reflection). A thin surface's transmission is the reflection lobe mirrored
+// through the surface; a volume's boundary refracts (Walter et al. 2007), in radiance units.
+//
+// Where the specification's informative mixing (1 - F(wo.h)) would reflect more than it receives
+// and break reciprocity, the layers are coupled by directional albedo as its Appendix B suggests
+// (Kulla and Conty 2017; albedo_tables.h): the diffuse under the dielectric layer weighs
+// (1 - E(mu_o)) (1 - E(mu_i)) / (1 - E_avg), which makes an opaque dielectric's albedo exactly its
+// layer's E(mu_o) plus the base colour times 1 - E(mu_o); the sheen and the coat take from what lies
+// under them min(1 - E(mu_o), 1 - E(mu_i)) (KHR_materials_sheen's albedo scaling, applied to the
+// coat too). Every lobe is then reciprocal (refraction up to the squared ratio of indices) and no
+// material reflects more than it receives.
+//
+// A thin, transmissive surface smoother than kMinAlpha lets light straight through: a singular
+// lobe (BsdfSample::pass_through), which next-event estimation crosses too (path_tracer.cpp).
+//
+// Sampling picks a lobe with probability proportional to an estimate of its albedo at wo, then
+// draws the GGX visible normals, the cosine (diffuse and sheen) or the pass-through. Weight and pdf
+// are those of the mixture (one-sample MIS over the lobes), computed by the same code as eval()
+// and pdf().
 
 #include "tracer/bsdf.h"
 
@@ -20,61 +34,21 @@
 #include <cmath>
 #include <numbers>
 
+#include "albedo_tables.h"
 #include "luminance.h"
+#include "microfacet.h"
+#include "sheen.h"
 
 namespace tracer {
-
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
-/// glTF's dielectric reflectance at normal incidence (an index of refraction of 1.5).
-constexpr float kDielectricF0 = 0.04f;
-
-/// Smallest GGX alpha. Without a delta lobe, eval() and pdf() are non-zero around the mirror
-/// direction (peak pdf about 1 / (4 pi alpha^2) per steradian, finite in float), so light samples
-/// can always be weighted by MIS against BSDF samples.
-constexpr float kMinAlpha = 1e-3f;
-
+/// glTF's coat: an index of refraction of 1.5.
+constexpr float kCoatF0 = 0.04f;
 
 float max_component(glm::vec3 c) { return std::max({c.x, c.y, c.z}); }
 
-glm::vec3 schlick_fresnel(glm::vec3 f0, float cos_theta) {
-  const float m = 1.0f - std::clamp(cos_theta, 0.0f, 1.0f);
-  const float m2 = m * m;
-  return f0 + (1.0f - f0) * (m2 * m2 * m);
-}
-
-/// GGX D(h) per steradian of microfacet normal, for a unit h in the local frame. The form
-/// (|h_t|^2 / alpha^2 + h_z^2)^2 does not cancel near the peak as 1 + (alpha^2 - 1) cos^2 does
-/// when alpha is small.
-float ggx_distribution(glm::vec3 h, float alpha) {
-  const float a2 = alpha * alpha;
-  const float t = (h.x * h.x + h.y * h.y) / a2 + h.z * h.z;
-  return 1.0f / (kPi * a2 * t * t);
-}
-
-/// S(cos) = sqrt(alpha^2 + (1 - alpha^2) cos^2), so that Smith's Lambda = (S / cos - 1) / 2.
-/// Masking written with S stays finite at grazing angles, where Lambda itself diverges.
-float smith_s(float cos_theta, float alpha) {
-  const float a2 = alpha * alpha;
-  return std::sqrt(a2 + (1.0f - a2) * cos_theta * cos_theta);
-}
-
-/// A GGX normal visible from wo (local, wo.z > 0), drawn with density G1(wo) max(0, wo.h) D(h) / wo.z
-/// (Heitz 2018): stretch to the alpha = 1 configuration, sample the projected hemisphere, unstretch.
-glm::vec3 sample_visible_normal(glm::vec3 wo, float alpha, float u1, float u2) {
-  const glm::vec3 v = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
-  const float len2 = v.x * v.x + v.y * v.y;
-  const glm::vec3 t1 = len2 > 0.0f ? glm::vec3(-v.y, v.x, 0.0f) / std::sqrt(len2) : glm::vec3(1.0f, 0.0f, 0.0f);
-  const glm::vec3 t2 = glm::cross(v, t1);
-  const float r = std::sqrt(u1);
-  const float phi = 2.0f * kPi * u2;
-  const float p1 = r * std::cos(phi);
-  const float s = 0.5f * (1.0f + v.z);
-  const float p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * r * std::sin(phi);
-  const glm::vec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * v;
-  return glm::normalize(glm::vec3(alpha * nh.x, alpha * nh.y, std::max(0.0f, nh.z)));
-}
+float alpha_of(float roughness) { return std::max(roughness * roughness, kMinAlpha); }
 
 /// Cosine-weighted direction about +z (Malley's method), density z / pi.
 glm::vec3 sample_cosine(float u1, float u2) {
@@ -83,89 +57,272 @@ glm::vec3 sample_cosine(float u1, float u2) {
   return {r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0f, 1.0f - u1))};
 }
 
+glm::vec3 reflect(glm::vec3 o, glm::vec3 h) { return 2.0f * glm::dot(o, h) * h - o; }
+
+glm::vec3 mirror(glm::vec3 w) { return {w.x, w.y, -w.z}; }
+
+/// The directional albedo of a GGX lobe of Fresnel f0 + (f90 - f0) (1 - wo.h)^5.
+template <class T>
+T lobe_albedo(T f0, float f90, float mu, float roughness) {
+  const AlbedoTables& tables = AlbedoTables::get();
+  const float e1 = tables.e1(mu, roughness), w = tables.w(mu, roughness);
+  return f0 * (e1 - w) + T(f90) * w;
+}
+
+/// A lobe's selection weight: its coefficient (0 where the lobe is absent) times an estimate of its
+/// albedo, floored so that a present lobe is always drawn now and then.
+float selection(float coefficient, float estimate) { return coefficient * std::max(estimate, 0.01f); }
+
 }  // namespace
 
-Bsdf::Bsdf(const SurfaceParams& params, glm::vec3 normal) : normal_(normal) {
+struct Bsdf::Lobes {
+  // Probabilities, summing to 1 (all 0 where nothing scatters).
+  float coat = 0.0f, sheen = 0.0f, specular = 0.0f, transmission = 0.0f, diffuse = 0.0f;
+};
+
+Bsdf::Bsdf(const SurfaceParams& params, glm::vec3 normal) {
   // Out-of-range inputs would make 1 - metallic negative or alpha above 1, breaking energy bounds.
-  const float metallic = std::clamp(params.metallic, 0.0f, 1.0f);
-  const float roughness = std::clamp(params.roughness, 0.0f, 1.0f);
-  diffuse_albedo_ = params.base_color * (1.0f - metallic);
-  f0_ = glm::mix(glm::vec3(kDielectricF0), params.base_color, metallic);
-  dielectric_cut_ = (1.0f - std::clamp(params.specular, 0.0f, 1.0f)) * (1.0f - metallic);
-  alpha_ = std::max(roughness * roughness, kMinAlpha);
-  // Duff et al. 2017, "Building an orthonormal basis, revisited": no branch on the axis, and no
-  // loss of precision as normal.z approaches -1.
-  const float sign = std::copysign(1.0f, normal.z);
-  const float a = -1.0f / (sign + normal.z);
-  const float b = normal.x * normal.y * a;
-  tangent_ = {1.0f + sign * normal.x * normal.x * a, sign * b, -sign * normal.x};
-  bitangent_ = {b, sign + normal.y * normal.y * a, -normal.y};
+  base_color_ = glm::max(params.base_color, glm::vec3(0.0f));
+  metallic_ = std::clamp(params.metallic, 0.0f, 1.0f);
+  roughness_ = std::clamp(params.roughness, 0.0f, 1.0f);
+  alpha_ = alpha_of(roughness_);
+  smooth_ = roughness_ * roughness_ < kMinAlpha;
+  ior_ = params.ior >= 1.0f ? params.ior : 0.0f;
+  const float specular = std::clamp(params.specular, 0.0f, 1.0f);
+  const float f0_ior = ior_ == 0.0f ? 1.0f : ((ior_ - 1.0f) / (ior_ + 1.0f)) * ((ior_ - 1.0f) / (ior_ + 1.0f));
+  f0_ = glm::min(f0_ior * glm::max(params.specular_color, glm::vec3(0.0f)), glm::vec3(1.0f)) * specular;
+  f90_ = specular;
+  thin_walled_ = params.thin_walled;
+  // A volume of infinite index (ior 0) reflects everything: nothing enters it.
+  transmission_ = (thin_walled_ || ior_ > 0.0f) ? std::clamp(params.transmission, 0.0f, 1.0f) * (1.0f - metallic_) : 0.0f;
+  clearcoat_ = std::clamp(params.clearcoat, 0.0f, 1.0f);
+  clearcoat_roughness_ = std::clamp(params.clearcoat_roughness, 0.0f, 1.0f);
+  clearcoat_alpha_ = alpha_of(clearcoat_roughness_);
+  sheen_color_ = glm::clamp(params.sheen_color, glm::vec3(0.0f), glm::vec3(1.0f));
+  sheen_roughness_ = std::clamp(params.sheen_roughness, 0.0f, 1.0f);
+  sheen_max_ = max_component(sheen_color_);
+  const Frame shading(normal);
+  tangent_ = shading.tangent;
+  bitangent_ = shading.bitangent;
+  normal_ = normal;
+  const Frame coat(params.clearcoat_normal == glm::vec3(0.0f) ? normal : params.clearcoat_normal);
+  coat_tangent_ = coat.tangent;
+  coat_bitangent_ = coat.bitangent;
+  coat_normal_ = coat.normal;
 }
 
-glm::vec3 Bsdf::to_local(glm::vec3 w) const {
-  return {glm::dot(w, tangent_), glm::dot(w, bitangent_), glm::dot(w, normal_)};
+glm::vec2 Bsdf::indices(bool wo_in_front) const {
+  if (thin_walled_) return {1.0f, 1.0f};
+  return wo_in_front ? glm::vec2(1.0f, ior_) : glm::vec2(ior_, 1.0f);
 }
 
-glm::vec3 Bsdf::fresnel(float cos_theta) const {
-  // Schlick's F is linear in F0: the dielectric share of the layer scales its own term.
-  return schlick_fresnel(f0_, cos_theta) - dielectric_cut_ * schlick_fresnel(glm::vec3(kDielectricF0), cos_theta);
+glm::vec3 Bsdf::dielectric_fresnel(float cos_theta, float eta_from, float eta_to) const {
+  float c = std::abs(cos_theta);
+  if (eta_from > eta_to) {
+    // Leaving the dense side: Schlick's approximation holds at the angle on the dense side, which
+    // is the transmitted one here; beyond the critical angle everything reflects (F90 unscaled).
+    const float ratio = eta_from / eta_to;
+    const float sin2_t = ratio * ratio * (1.0f - c * c);
+    if (sin2_t >= 1.0f) return glm::vec3(1.0f);
+    c = std::sqrt(1.0f - sin2_t);
+  }
+  return schlick(f0_, glm::vec3(f90_), c);
 }
 
-Bsdf::Lobes Bsdf::lobes(float cos_o) const {
-  const glm::vec3 fresnel = this->fresnel(cos_o);
-  const glm::vec3 diffuse = diffuse_albedo_ * (1.0f - max_component(fresnel));
-  const float specular = luminance(fresnel);
-  const float total = specular + luminance(diffuse);
-  // Both zero only for a black metal seen head-on, where every direction contributes nothing.
-  return {diffuse, total > 0.0f ? specular / total : 1.0f};
+float Bsdf::dielectric_albedo(float mu) const { return lobe_albedo(max_component(f0_), f90_, mu, roughness_); }
+
+float Bsdf::coat_share(float mu_coat) const {
+  if (clearcoat_ == 0.0f) return 1.0f;
+  return 1.0f - clearcoat_ * lobe_albedo(kCoatF0, 1.0f, mu_coat, clearcoat_roughness_);
+}
+
+float Bsdf::sheen_share(float mu) const {
+  if (sheen_max_ == 0.0f) return 1.0f;
+  return 1.0f - sheen_max_ * AlbedoTables::get().sheen(mu, sheen_roughness_);
+}
+
+Bsdf::Lobes Bsdf::lobes(float mu, float mu_coat) const {
+  const float coat_albedo = clearcoat_ * lobe_albedo(kCoatF0, 1.0f, mu_coat, clearcoat_roughness_);
+  const float under_coat = 1.0f - coat_albedo;
+  const float sheen_albedo = sheen_max_ * AlbedoTables::get().sheen(mu, sheen_roughness_);
+  const float base = under_coat * (1.0f - sheen_albedo);
+  const float dielectric = 1.0f - metallic_;
+  const float layer = dielectric_albedo(mu);
+  const float colour = luminance(base_color_);
+  float transmitted;  // an estimate of what the transmission lobe lets through, per unit of its weight
+  if (thin_walled_ && smooth_) {
+    transmitted = 1.0f - max_component(dielectric_fresnel(mu, 1.0f, 1.0f));
+  } else {
+    transmitted = AlbedoTables::get().e1(mu, roughness_) - layer;
+  }
+  const float specular =
+      dielectric * luminance(lobe_albedo(f0_, f90_, mu, roughness_)) +
+      metallic_ * luminance(lobe_albedo(base_color_, 1.0f, mu, roughness_));
+  Lobes lobes;
+  lobes.coat = selection(clearcoat_, coat_albedo);
+  lobes.sheen = selection(under_coat * sheen_max_, sheen_albedo);
+  lobes.specular = selection(base * (dielectric * std::max(max_component(f0_), f90_) + metallic_), specular);
+  lobes.transmission = selection(base * transmission_ * colour, transmitted);
+  lobes.diffuse = selection(base * (dielectric - transmission_) * colour, 1.0f - layer);
+  const float total = lobes.coat + lobes.sheen + lobes.specular + lobes.transmission + lobes.diffuse;
+  if (!(total > 0.0f)) return {};
+  lobes.coat /= total;
+  lobes.sheen /= total;
+  lobes.specular /= total;
+  lobes.transmission /= total;
+  lobes.diffuse /= total;
+  return lobes;
 }
 
 Bsdf::Value Bsdf::evaluate(glm::vec3 wo, glm::vec3 wi) const {
-  glm::vec3 o = to_local(wo);
-  glm::vec3 i = to_local(wi);
-  // Two-sided: mirror both through the tangent plane so that wo is above it. The BSDF is isotropic,
-  // so the mirror image has the same value.
-  if (o.z < 0.0f) {
+  glm::vec3 o{glm::dot(wo, tangent_), glm::dot(wo, bitangent_), glm::dot(wo, normal_)};
+  glm::vec3 i{glm::dot(wi, tangent_), glm::dot(wi, bitangent_), glm::dot(wi, normal_)};
+  if (o.z == 0.0f || !std::isfinite(o.z)) return {};
+  const bool front = o.z > 0.0f;
+  // Work with wo above the surface: the lobes are isotropic, so mirroring both through the tangent
+  // plane changes nothing but the side, which `front` keeps for a volume's indices.
+  if (!front) {
     o.z = -o.z;
     i.z = -i.z;
   }
-  if (!(o.z > 0.0f) || !(i.z > 0.0f)) return {};
-  const float half_length = glm::length(o + i);
-  if (!(half_length > 0.0f)) return {};  // both at grazing and opposite: underflow
-  const glm::vec3 h = (o + i) / half_length;
-
-  const Lobes lobes = this->lobes(o.z);
-  const float d = ggx_distribution(h, alpha_);
-  const float s_o = smith_s(o.z, alpha_);
-  const float s_i = smith_s(i.z, alpha_);
-  // D F G2 / (4 cos_o cos_i) times cos_i, with G2 = 2 cos_o cos_i / (S_o cos_i + S_i cos_o): the
-  // cosines cancel, so nothing divides by a vanishing cosine.
-  const glm::vec3 specular = fresnel(glm::dot(o, h)) * (d * i.z / (2.0f * (s_o * i.z + s_i * o.z)));
-  const glm::vec3 diffuse = lobes.diffuse * (i.z / kPi);
-  // Visible-normal density G1(wo) D(h) / (4 cos_o) with G1 = 2 cos_o / (cos_o + S_o), per steradian of wi.
-  const float specular_pdf = d / (2.0f * (o.z + s_o));
-  const float diffuse_pdf = i.z / kPi;
-  return {specular + diffuse, glm::mix(diffuse_pdf, specular_pdf, lobes.specular_probability)};
+  const Lobes lobes = this->lobes(o.z, std::abs(glm::dot(wo, coat_normal_)));
+  const Ggx ggx{alpha_};
+  Value value;
+  glm::vec3 base(0.0f);  // the material under the sheen and the coat
+  glm::vec3 sheen(0.0f);
+  if (i.z > 0.0f) {
+    const glm::vec3 h = glm::normalize(o + i);
+    const glm::vec2 eta = indices(front);
+    const float specular = ggx.reflection(o, i) * i.z;
+    const glm::vec3 fresnel = (1.0f - metallic_) * dielectric_fresnel(glm::dot(o, h), eta.x, eta.y) +
+                              metallic_ * schlick(base_color_, glm::vec3(1.0f), glm::dot(o, h));
+    base += fresnel * specular;
+    const float diffuse_weight = 1.0f - metallic_ - transmission_;
+    if (diffuse_weight > 0.0f) {
+      const float remaining = 1.0f - (max_component(f0_) * (AlbedoTables::get().e1_average(roughness_) -
+                                                            AlbedoTables::get().w_average(roughness_)) +
+                                      f90_ * AlbedoTables::get().w_average(roughness_));
+      if (remaining > 1e-4f) {
+        const float coupling = (1.0f - dielectric_albedo(o.z)) * (1.0f - dielectric_albedo(i.z)) / remaining;
+        base += diffuse_weight * base_color_ * (coupling * i.z / kPi);
+      }
+    }
+    if (sheen_max_ > 0.0f) sheen = sheen_color_ * Sheen(sheen_roughness_).reflection(o, i);
+    value.pdf += lobes.specular * ggx.reflection_density(o, i) + (lobes.diffuse + lobes.sheen) * i.z / kPi;
+  } else if (i.z < 0.0f && transmission_ > 0.0f && !(thin_walled_ && smooth_)) {
+    const glm::vec3 tint = transmission_ * base_color_;
+    if (thin_walled_) {
+      const glm::vec3 m = mirror(i);
+      const glm::vec3 h = glm::normalize(o + m);
+      base += tint * (1.0f - max_component(dielectric_fresnel(glm::dot(o, h), 1.0f, 1.0f))) * (ggx.reflection(o, m) * m.z);
+      value.pdf += lobes.transmission * ggx.reflection_density(o, m);
+    } else {
+      const glm::vec2 eta = indices(front);
+      const float etap = eta.y / eta.x;  // the index on wi's side over wo's
+      glm::vec3 h = glm::normalize(i * etap + o);
+      if (h.z < 0.0f) h = -h;
+      const float oh = glm::dot(o, h), ih = glm::dot(i, h);
+      if (oh > 0.0f && ih < 0.0f) {
+        const float denominator = (ih + oh / etap) * (ih + oh / etap);
+        const float fresnel = max_component(dielectric_fresnel(oh, eta.x, eta.y));
+        // D G2 |i.h| |o.h| / (denominator |o.z| |i.z|) |i.z|, in radiance: over etap^2.
+        const float btdf = ggx.distribution(h) * ggx.g2(o, i) * std::abs(ih) * oh / (denominator * o.z * etap * etap);
+        base += tint * (1.0f - fresnel) * btdf;
+        value.pdf += lobes.transmission * ggx.visible_density(o, h) * std::abs(ih) / denominator;
+      }
+    }
+  }
+  const float mu_i = std::abs(i.z);
+  const float sheen_scale = std::min(sheen_share(o.z), sheen_share(mu_i));
+  glm::vec3 f = sheen + sheen_scale * base;
+  if (clearcoat_ > 0.0f) {
+    glm::vec3 oc{glm::dot(wo, coat_tangent_), glm::dot(wo, coat_bitangent_), glm::dot(wo, coat_normal_)};
+    glm::vec3 ic{glm::dot(wi, coat_tangent_), glm::dot(wi, coat_bitangent_), glm::dot(wi, coat_normal_)};
+    if (oc.z < 0.0f) {
+      oc.z = -oc.z;
+      ic.z = -ic.z;
+    }
+    f *= std::min(coat_share(oc.z), coat_share(std::abs(ic.z)));
+    if (oc.z > 0.0f && ic.z > 0.0f) {
+      const Ggx coat{clearcoat_alpha_};
+      const glm::vec3 h = glm::normalize(oc + ic);
+      // The coat's f, times the cosine of wi to the shading normal, as every lobe's.
+      f += glm::vec3(clearcoat_ * schlick(kCoatF0, 1.0f, glm::dot(oc, h)) * coat.reflection(oc, ic) * mu_i);
+      value.pdf += lobes.coat * coat.reflection_density(oc, ic);
+    }
+  }
+  value.f_cos = f;
+  return value;
 }
 
 glm::vec3 Bsdf::eval(glm::vec3 wo, glm::vec3 wi) const { return evaluate(wo, wi).f_cos; }
 
 float Bsdf::pdf(glm::vec3 wo, glm::vec3 wi) const { return evaluate(wo, wi).pdf; }
 
+std::optional<PassThrough> Bsdf::pass_through(glm::vec3 wo) const {
+  if (!(thin_walled_ && smooth_ && transmission_ > 0.0f)) return std::nullopt;
+  const float mu = std::abs(glm::dot(wo, normal_));
+  if (!(mu > 0.0f)) return std::nullopt;
+  const float mu_coat = std::abs(glm::dot(wo, coat_normal_));
+  const float probability = lobes(mu, mu_coat).transmission;
+  if (!(probability > 0.0f)) return std::nullopt;
+  // Straight through, the microfacet normal is the surface's: the Fresnel of wo itself, and every
+  // layer above takes its share at the same cosine on both sides.
+  const glm::vec3 transmittance = coat_share(mu_coat) * sheen_share(mu) * transmission_ * base_color_ *
+                                  (1.0f - max_component(dielectric_fresnel(mu, 1.0f, 1.0f)));
+  return PassThrough{transmittance, probability};
+}
+
 std::optional<BsdfSample> Bsdf::sample(glm::vec3 wo, glm::vec3 u) const {
-  glm::vec3 o = to_local(wo);
-  const bool flipped = o.z < 0.0f;
-  if (flipped) o.z = -o.z;
-  if (!(o.z > 0.0f)) return std::nullopt;
-  glm::vec3 i;
-  if (u.x < lobes(o.z).specular_probability) {
-    const glm::vec3 h = sample_visible_normal(o, alpha_, u.y, u.z);
-    i = 2.0f * glm::dot(o, h) * h - o;  // may point below the surface: no sample then
+  glm::vec3 o{glm::dot(wo, tangent_), glm::dot(wo, bitangent_), glm::dot(wo, normal_)};
+  if (o.z == 0.0f || !std::isfinite(o.z)) return std::nullopt;
+  const bool front = o.z > 0.0f;
+  if (!front) o.z = -o.z;
+  const Lobes lobes = this->lobes(o.z, std::abs(glm::dot(wo, coat_normal_)));
+  // Each lobe's draw must land where that lobe's own density is non-zero (a reflection on wo's
+  // side, a transmission across), or the mixture's pdf would not count the way it got there.
+  float pick = u.x;
+  glm::vec3 wi;
+  if ((pick -= lobes.coat) < 0.0f) {
+    glm::vec3 oc{glm::dot(wo, coat_tangent_), glm::dot(wo, coat_bitangent_), glm::dot(wo, coat_normal_)};
+    const float side = oc.z < 0.0f ? -1.0f : 1.0f;
+    oc.z *= side;
+    glm::vec3 ic = reflect(oc, Ggx{clearcoat_alpha_}.sample_visible(oc, u.y, u.z));
+    if (!(ic.z > 0.0f)) return std::nullopt;
+    ic.z *= side;
+    wi = ic.x * coat_tangent_ + ic.y * coat_bitangent_ + ic.z * coat_normal_;
   } else {
-    i = sample_cosine(u.y, u.z);
+    glm::vec3 i;
+    const Ggx ggx{alpha_};
+    if ((pick -= lobes.sheen) < 0.0f) {
+      i = sample_cosine(u.y, u.z);
+    } else if ((pick -= lobes.specular) < 0.0f) {
+      i = reflect(o, ggx.sample_visible(o, u.y, u.z));
+      if (!(i.z > 0.0f)) return std::nullopt;
+    } else if ((pick -= lobes.transmission) < 0.0f) {
+      if (thin_walled_ && smooth_) {
+        const std::optional<PassThrough> through = pass_through(wo);
+        if (!through) return std::nullopt;
+        return BsdfSample{-wo, through->transmittance / through->probability, through->probability, true};
+      }
+      const glm::vec3 h = ggx.sample_visible(o, u.y, u.z);
+      if (thin_walled_) {
+        i = mirror(reflect(o, h));
+      } else {
+        const glm::vec2 eta = indices(front);
+        const std::optional<glm::vec3> refracted = refract(o, h, eta.y / eta.x);
+        if (!refracted) return std::nullopt;
+        i = *refracted;
+      }
+      if (!(i.z < 0.0f)) return std::nullopt;
+    } else if (lobes.diffuse > 0.0f) {
+      i = sample_cosine(u.y, u.z);
+    } else {
+      return std::nullopt;  // nothing scatters (or u.x within rounding of 1)
+    }
+    if (!front) i.z = -i.z;
+    wi = i.x * tangent_ + i.y * bitangent_ + i.z * normal_;
   }
-  if (flipped) i.z = -i.z;
-  const glm::vec3 wi = i.x * tangent_ + i.y * bitangent_ + i.z * normal_;
   // Weight and pdf from the world direction returned, so that they agree with eval() and pdf()
   // for it to the last bit, as MIS against light samples needs.
   const Value value = evaluate(wo, wi);
