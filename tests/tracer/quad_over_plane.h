@@ -71,6 +71,13 @@ struct QuadOverPlane {
   /// 16 x 16 sub-cells of a grid of cells_u x cells_v cells, inside which `le` must be constant.
   glm::dvec3 integrate(const std::function<glm::dvec3(double u, double v)>& le_at, std::uint32_t cells_u,
                        std::uint32_t cells_v) const {
+    return integrate_weighted(le_at, cells_u, cells_v, [](glm::vec3) { return glm::dvec3(1.0); });
+  }
+
+  /// The same with the light of each direction wi (unit, from the point to the quad) weighed by
+  /// `weight(wi)`: what lies between the two lets through.
+  glm::dvec3 integrate_weighted(const std::function<glm::dvec3(double u, double v)>& le_at, std::uint32_t cells_u,
+                                std::uint32_t cells_v, const std::function<glm::dvec3(glm::vec3 wi)>& weight) const {
     const Material& m = scene.materials[1];
     const Bsdf bsdf({m.base_color, m.metallic, m.roughness}, {0, 0, 1});
     const glm::vec3 wo = glm::normalize(eye - point);
@@ -92,7 +99,7 @@ struct QuadOverPlane {
             const glm::vec3 wi = d / std::sqrt(r2);
             const double cos_light = wi.z;  // the emitter faces -z
             const double area = 1.0 / (double(cells_u) * cells_v * kSub * kSub);
-            sum += glm::dvec3(bsdf.eval(wo, wi)) * le * (cos_light / r2 * area);
+            sum += glm::dvec3(bsdf.eval(wo, wi)) * le * weight(wi) * (cos_light / r2 * area);
           }
         }
       }

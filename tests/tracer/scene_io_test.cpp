@@ -368,6 +368,95 @@ TEST_F(SceneIoTest, AlphaNormalMapsTextureTransformsAndUvSets) {
   EXPECT_EQ(scene.mesh.tangents[3], glm::vec4(0.0f));
 }
 
+TEST_F(SceneIoTest, MaterialExtensionsAsTheirSpecificationsDefineThem) {
+  // KHR_materials_specular, _ior, _transmission, _volume, _clearcoat and _sheen: every factor,
+  // every texture with the channel its specification names (specular and sheen roughness in
+  // alpha, kept as stored; colours decoded from sRGB), the defaults where a property is absent,
+  // and a volume only where the thickness is non-zero.
+  const std::string png = trs_test::png_file(1, 1, 4, 8, {255, 128, 64, 51});
+  std::ofstream(file("rgba.png"), std::ios::binary) << png;
+  Gltf gltf;
+  gltf.doc["images"] = {{{"uri", "rgba.png"}}};
+  gltf.doc["textures"] = {{{"source", 0}}};
+  const json texture = {{"index", 0}};
+  gltf.doc["materials"] = {
+      {{"extensions",
+        {{"KHR_materials_specular", {{"specularFactor", 0.5}, {"specularTexture", texture},
+                                     {"specularColorFactor", {2, 1, 0.5}}, {"specularColorTexture", texture}}},
+         {"KHR_materials_ior", {{"ior", 1.33}}},
+         {"KHR_materials_transmission", {{"transmissionFactor", 0.75}, {"transmissionTexture", texture}}},
+         {"KHR_materials_volume", {{"thicknessFactor", 0.1}, {"attenuationDistance", 2.5},
+                                   {"attenuationColor", {0.5, 0.6, 0.7}}}},
+         {"KHR_materials_clearcoat", {{"clearcoatFactor", 0.9}, {"clearcoatTexture", texture},
+                                      {"clearcoatRoughnessFactor", 0.2}, {"clearcoatRoughnessTexture", texture},
+                                      {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.25}}}}},
+         {"KHR_materials_sheen", {{"sheenColorFactor", {0.1, 0.2, 0.3}}, {"sheenColorTexture", texture},
+                                  {"sheenRoughnessFactor", 0.4}, {"sheenRoughnessTexture", texture}}}}}},
+      {{"extensions", {{"KHR_materials_transmission", json::object()},
+                       {"KHR_materials_volume", {{"thicknessFactor", 0}}},
+                       {"KHR_materials_clearcoat", json::object()}, {"KHR_materials_sheen", json::object()}}}}};
+  gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2}, {{"material", 0}})}});
+  gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2}, {{"material", 1}})}});
+  const tracer::Scene scene = tracer::load_gltf_scene(gltf.write(dir_, "extensions"));
+
+  using Channel = tracer::ScalarInput::Channel;
+  const tracer::Material& m = scene.materials[0];
+  const auto texels = [&](const tracer::TextureRef& ref) { return scene.textures.at(std::size_t(ref.texture)); };
+  EXPECT_FLOAT_EQ(m.specular.factor, 0.5f);
+  EXPECT_EQ(m.specular.channel, Channel::alpha);
+  ASSERT_EQ(texels(m.specular.texture).alpha.size(), 1u);
+  EXPECT_FLOAT_EQ(texels(m.specular.texture).alpha[0], 0.2f);
+  expect_near(m.specular_color.factor, {2, 1, 0.5});
+  expect_near(texels(m.specular_color.texture).texels[0], {1.0f, 0.21586f, 0.05127f}, 1e-4f);  // sRGB decoded
+  EXPECT_FLOAT_EQ(m.ior, 1.33f);
+  EXPECT_FLOAT_EQ(m.transmission.factor, 0.75f);
+  EXPECT_EQ(m.transmission.channel, Channel::r);
+  expect_near(texels(m.transmission.texture).texels[0], {1.0f, 128 / 255.0f, 64 / 255.0f}, 1e-6f);  // data: as stored
+  ASSERT_TRUE(m.volume.has_value());
+  EXPECT_FLOAT_EQ(m.volume->attenuation_distance, 2.5f);
+  expect_near(m.volume->attenuation_color, {0.5f, 0.6f, 0.7f});
+  expect_near(m.volume->transmittance(5.0f), {0.25f, 0.36f, 0.49f});  // colour^(5 / 2.5)
+  EXPECT_FLOAT_EQ(m.clearcoat.factor, 0.9f);
+  EXPECT_EQ(m.clearcoat.channel, Channel::r);
+  EXPECT_FLOAT_EQ(m.clearcoat_roughness.factor, 0.2f);
+  EXPECT_EQ(m.clearcoat_roughness.channel, Channel::g);
+  EXPECT_TRUE(m.clearcoat_normal_texture.present());
+  EXPECT_FLOAT_EQ(m.clearcoat_normal_scale, 0.25f);
+  expect_near(m.sheen_color.factor, {0.1f, 0.2f, 0.3f});
+  expect_near(texels(m.sheen_color.texture).texels[0], {1.0f, 0.21586f, 0.05127f}, 1e-4f);
+  EXPECT_FLOAT_EQ(m.sheen_roughness.factor, 0.4f);
+  EXPECT_EQ(m.sheen_roughness.channel, Channel::alpha);
+
+  const tracer::Material& defaults = scene.materials[1];
+  EXPECT_FLOAT_EQ(defaults.specular.factor, 1.0f);
+  EXPECT_FLOAT_EQ(defaults.ior, 1.5f);
+  EXPECT_FLOAT_EQ(defaults.transmission.factor, 0.0f);
+  EXPECT_FALSE(defaults.volume.has_value());  // thickness 0: thin-walled
+  EXPECT_FLOAT_EQ(defaults.clearcoat.factor, 0.0f);
+  EXPECT_FALSE(defaults.clearcoat_normal_texture.present());
+  expect_near(defaults.sheen_color.factor, glm::vec3(0.0f));
+}
+
+TEST_F(SceneIoTest, MaterialExtensionValuesOutOfRangeAreRefused) {
+  // Each refusal names the file, the material, the extension and the property.
+  const std::vector<std::pair<json, std::string>> cases = {
+      {{{"KHR_materials_ior", {{"ior", 0.5}}}}, "KHR_materials_ior: ior 0.500000 must be at least 1, or 0"},
+      {{{"KHR_materials_transmission", {{"transmissionFactor", 1.5}}}}, "transmissionFactor 1.500000 is out of its range"},
+      {{{"KHR_materials_specular", {{"specularColorFactor", {1, -1, 1}}}}}, "specularColorFactor must be three numbers"},
+      {{{"KHR_materials_volume", {{"thicknessFactor", 1}, {"attenuationDistance", 0}}}}, "attenuationDistance must be positive"},
+      {{{"KHR_materials_clearcoat", {{"clearcoatRoughnessFactor", -0.1}}}}, "clearcoatRoughnessFactor -0.100000 is out of its range"},
+      {{{"KHR_materials_sheen", {{"sheenColorTexture", {{"texCoord", 0}}}}}}, "sheenColorTexture: index must be a texture"},
+  };
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    Gltf gltf;
+    gltf.doc["materials"] = {{{"name", "shade"}, {"extensions", cases[k].first}}};
+    gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2}, {{"material", 0}})}});
+    const fs::path bad = gltf.write(dir_, "bad" + std::to_string(k));
+    expect_error([&] { tracer::load_gltf_scene(bad); }, bad, "material 0 'shade' ");
+    expect_error([&] { tracer::load_gltf_scene(bad); }, bad, cases[k].second);
+  }
+}
+
 TEST_F(SceneIoTest, MirroringTurnsTheTangentsHandedness) {
   Gltf gltf;
   const std::vector<glm::vec4> tangents = {{0, 1, 0, 1}, {0, 1, 0, 1}, {0, 1, 0, 1}};
@@ -379,15 +468,21 @@ TEST_F(SceneIoTest, MirroringTurnsTheTangentsHandedness) {
 }
 
 TEST_F(SceneIoTest, RequiredExtensionsTheRendererLacksAreRefused) {
+  // Every material extension the renderer implements may be required; one it lacks
+  // (KHR_materials_iridescence) is refused, naming it.
   Gltf gltf;
   gltf.node({{"mesh", gltf.mesh(kTriangle, {0, 1, 2})}});
-  gltf.doc["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_transmission"};
-  gltf.doc["extensionsRequired"] = {"KHR_lights_punctual"};
+  const std::vector<std::string> implemented = {"KHR_lights_punctual", "KHR_materials_ior", "KHR_materials_specular",
+                                                "KHR_materials_transmission", "KHR_materials_volume",
+                                                "KHR_materials_clearcoat", "KHR_materials_sheen"};
+  gltf.doc["extensionsUsed"] = implemented;
+  gltf.doc["extensionsUsed"].push_back("KHR_materials_iridescence");
+  gltf.doc["extensionsRequired"] = implemented;
   EXPECT_NO_THROW(tracer::load_gltf_scene(gltf.write(dir_, "implemented")));
-  gltf.doc["extensionsRequired"].push_back("KHR_materials_transmission");
+  gltf.doc["extensionsRequired"].push_back("KHR_materials_iridescence");
   const fs::path lacking = gltf.write(dir_, "lacking");
   expect_error([&] { tracer::load_gltf_scene(lacking); }, lacking,
-               "requires the extension KHR_materials_transmission, which is not implemented");
+               "requires the extension KHR_materials_iridescence, which is not implemented");
 }
 
 TEST_F(SceneIoTest, ErrorsNameTheFileAtFault) {

@@ -175,8 +175,8 @@ struct LightOptions {
     app.add_flag("!--no-punctual", options.punctual,
                  "leave out the scene's punctual lights (KHR_lights_punctual): its emission alone");
     app.add_flag("--diffuse-materials", options.diffuse_materials,
-                 "render every surface as a Lambertian of its base colour, emission kept: lighting "
-                 "compared with other renderers");
+                 "render every surface as a Lambertian of its base colour, emission and transmission kept: "
+                 "lighting compared with other renderers");
   }
 
   UsageError finish(const CLI::App& app, RenderOptions& options) const {

@@ -212,10 +212,13 @@ tracer::Scene load_scene(const RenderOptions& options) {
   tracer::Scene scene = tracer::load_gltf_scene(options.scene);
   if (!options.punctual) scene.lights.clear();
   if (options.diffuse_materials) {
+    // No specular layer, coat or sheen: a Lambertian of the base colour beside the material's
+    // transmission, whose roughness the metallic-roughness texture still gives.
     for (tracer::Material& m : scene.materials) {
       m.metallic = 0.0f;
-      m.metallic_roughness_texture = {};
-      m.specular = 0.0f;
+      m.specular = {0.0f, {}, tracer::ScalarInput::Channel::alpha};
+      m.clearcoat = {};
+      m.sheen_color = {};
     }
   }
   return scene;

@@ -60,7 +60,7 @@ struct RunHooks {
 DisplayEncoder display_encoder(const RenderOptions& options, const NoteHandler& note);
 
 /// The scene the options name, its punctual lights left out with --no-punctual, its materials
-/// made Lambertian with --diffuse-materials. Throws FileError naming the file.
+/// made Lambertian with --diffuse-materials (their transmission kept). Throws FileError naming the file.
 tracer::Scene load_scene(const RenderOptions& options);
 
 /// The renderer of `scene` with the options' settings at animation frame `frame`; a scene that

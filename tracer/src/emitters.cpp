@@ -103,7 +103,11 @@ lightsampler::MeshView Emitters::mesh() const {
 
 glm::vec3 Emitters::radiance(std::uint32_t light, float b1, float b2, glm::vec3 w) const {
   if (!two_sided(light) && glm::dot(w, normals_[light]) <= 0.0f) return glm::vec3(0.0f);
-  return emission(light, b1, b2);
+  return emission(light, b1, b2) * coat_transmittance(light, b1, b2, w);
+}
+
+float Emitters::coat_transmittance(std::uint32_t light, float b1, float b2, glm::vec3 w) const {
+  return tracer::coat_transmittance(scene_, scene_triangles_[light], b1, b2, w);
 }
 
 bool Emitters::two_sided(std::uint32_t light) const { return (*maps_)[light_maps_[light]].double_sided; }

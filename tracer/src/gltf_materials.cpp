@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <regex>
 #include <string>
@@ -18,8 +19,11 @@ namespace {
 using trs::gltf::Document;
 
 /// Colour is sRGB-encoded in integer images; data textures hold their values as they are. A base
-/// colour whose alpha covers the surface keeps its image's alpha too.
-enum class Use { colour, colour_and_alpha, data };
+/// colour whose alpha covers the surface keeps its image's alpha too, and so do data textures
+/// read in their alpha channel (KHR_materials_specular's, KHR_materials_sheen's roughness).
+enum class Use { colour, colour_and_alpha, data, data_and_alpha };
+
+bool is_colour(Use use) { return use == Use::colour || use == Use::colour_and_alpha; }
 
 std::string label(const char* kind, std::size_t index, const std::string& name) {
   return std::string(kind) + " " + std::to_string(index) + (name.empty() ? "" : " '" + name + "'");
@@ -54,7 +58,7 @@ Texture read_texture(const Document& document, int index, Use use) {
 
   // Problems are the image file's where it has one, else the document's about this image.
   Texture texture;
-  const trs::Alpha alpha = use == Use::colour_and_alpha ? trs::Alpha::keep : trs::Alpha::drop;
+  const trs::Alpha alpha = use == Use::colour_and_alpha || use == Use::data_and_alpha ? trs::Alpha::keep : trs::Alpha::drop;
   std::filesystem::path file = document.file();
   std::string prefix;
   trs::Image pixels;
@@ -72,10 +76,10 @@ Texture read_texture(const Document& document, int index, Use use) {
   texture.width = pixels.width;
   texture.height = pixels.height;
   texture.alpha = std::move(pixels.alpha);
-  texture.texels = linear_texels(std::move(pixels), use != Use::data, file, prefix);
+  texture.texels = linear_texels(std::move(pixels), is_colour(use), file, prefix);
   // An image that plays a sequence: its frames are read as its poster is (colour).
   const tinygltf::Value& frames = image.extras.Get("frames");
-  if (use != Use::data && frames.IsString()) {
+  if (is_colour(use) && frames.IsString()) {
     texture.frames = read_image_sequence(document.file(), frames.Get<std::string>(), texture.width,
                                          texture.height, label("image", std::size_t(source.source), image.name));
   }
@@ -249,6 +253,134 @@ void read_emission_animation(const Document& document, Scene& scene) {
   }
 }
 
+/// A material extension's textureInfo (or normalTextureInfo) as tinygltf reads the core's.
+struct ExtensionTexture {
+  int index = -1;
+  int texCoord = 0;
+  double scale = 1.0;  ///< a normal texture's
+  tinygltf::ExtensionMap extensions;
+};
+
+ExtensionTexture extension_texture(const tinygltf::Value& object, const char* key, const Document& document,
+                                   const std::string& what) {
+  ExtensionTexture info;
+  const tinygltf::Value& value = object.Get(key);
+  if (!value.IsObject()) return info;
+  const std::string where = what + " " + key;
+  const tinygltf::Value& index = value.Get("index");
+  if (!index.IsNumber() || !(index.GetNumberAsDouble() >= 0.0)) document.fail(where + ": index must be a texture");
+  info.index = int(index.GetNumberAsDouble());
+  info.texCoord = int(number(value, "texCoord", 0.0, document, where));
+  info.scale = number(value, "scale", 1.0, document, where);
+  const tinygltf::Value& extensions = value.Get("extensions");
+  if (extensions.IsObject()) {
+    for (const std::string& name : extensions.Keys()) info.extensions[name] = extensions.Get(name);
+  }
+  return info;
+}
+
+/// A number of an extension's object, default `fallback`, that must lie in [low, high].
+float ranged(const tinygltf::Value& object, const char* key, double fallback, double low, double high,
+             const Document& document, const std::string& what) {
+  const double value = number(object, key, fallback, document, what);
+  if (!(value >= low && value <= high)) {
+    document.fail(what + ": " + key + " " + std::to_string(value) + " is out of its range [" + std::to_string(low) +
+                  ", " + (std::isinf(high) ? std::string("inf") : std::to_string(high)) + "]");
+  }
+  return float(value);
+}
+
+/// Three numbers of an extension's object in [0, high] each, default `fallback`.
+glm::vec3 ranged_colour(const tinygltf::Value& object, const char* key, glm::vec3 fallback, double high,
+                        const Document& document, const std::string& what) {
+  const tinygltf::Value& value = object.Get(key);
+  if (!value.IsArray()) return fallback;
+  if (value.ArrayLen() != 3) document.fail(what + ": " + key + " must be three numbers");
+  glm::vec3 colour;
+  for (int c = 0; c < 3; ++c) {
+    const tinygltf::Value& component = value.Get(c);
+    const double v = component.IsNumber() ? component.GetNumberAsDouble() : -1.0;
+    if (!(v >= 0.0 && v <= high)) document.fail(what + ": " + key + " must be three numbers in [0, " + std::to_string(high) + "]");
+    colour[c] = float(v);
+  }
+  return colour;
+}
+
+/// The material extensions that change how the surface scatters light, each as its specification
+/// defines its properties and their defaults; a value out of range is refused, naming it.
+class ExtensionReader {
+ public:
+  ExtensionReader(const tinygltf::Material& source, Textures& textures, const Document& document,
+                  const std::string& what)
+      : source_(source), textures_(textures), document_(document), what_(what) {}
+
+  void read(Material& material) {
+    if (const tinygltf::Value* e = find("KHR_materials_specular")) {
+      material.specular.factor = ranged(*e, "specularFactor", 1.0, 0.0, 1.0, document_, where_);
+      material.specular.texture = texture(*e, "specularTexture", Use::data_and_alpha);
+      material.specular_color.factor = ranged_colour(*e, "specularColorFactor", glm::vec3(1.0f), kInfinity, document_, where_);
+      material.specular_color.texture = texture(*e, "specularColorTexture", Use::colour);
+    }
+    if (const tinygltf::Value* e = find("KHR_materials_ior")) {
+      material.ior = float(number(*e, "ior", 1.5, document_, where_));
+      if (!(material.ior >= 1.0f || material.ior == 0.0f))
+        document_.fail(where_ + ": ior " + std::to_string(material.ior) + " must be at least 1, or 0");
+    }
+    if (const tinygltf::Value* e = find("KHR_materials_transmission")) {
+      material.transmission.factor = ranged(*e, "transmissionFactor", 0.0, 0.0, 1.0, document_, where_);
+      material.transmission.texture = texture(*e, "transmissionTexture", Use::data);
+    }
+    if (const tinygltf::Value* e = find("KHR_materials_volume")) {
+      // A ray tracer measures the distances a thickness texture approximates; the factor alone
+      // says whether the surface bounds a volume.
+      if (ranged(*e, "thicknessFactor", 0.0, 0.0, kInfinity, document_, where_) > 0.0f) {
+        Volume volume;
+        volume.attenuation_distance = ranged(*e, "attenuationDistance", kInfinity, 0.0, kInfinity, document_, where_);
+        if (!(volume.attenuation_distance > 0.0f)) document_.fail(where_ + ": attenuationDistance must be positive");
+        volume.attenuation_color = ranged_colour(*e, "attenuationColor", glm::vec3(1.0f), 1.0, document_, where_);
+        material.volume = volume;
+      }
+    }
+    if (const tinygltf::Value* e = find("KHR_materials_clearcoat")) {
+      material.clearcoat.factor = ranged(*e, "clearcoatFactor", 0.0, 0.0, 1.0, document_, where_);
+      material.clearcoat.texture = texture(*e, "clearcoatTexture", Use::data);
+      material.clearcoat_roughness.factor = ranged(*e, "clearcoatRoughnessFactor", 0.0, 0.0, 1.0, document_, where_);
+      material.clearcoat_roughness.texture = texture(*e, "clearcoatRoughnessTexture", Use::data);
+      const ExtensionTexture normal = extension_texture(*e, "clearcoatNormalTexture", document_, where_);
+      material.clearcoat_normal_texture = textures_.get(normal, Use::data, where_ + " clearcoatNormalTexture");
+      material.clearcoat_normal_scale = float(normal.scale);
+    }
+    if (const tinygltf::Value* e = find("KHR_materials_sheen")) {
+      material.sheen_color.factor = ranged_colour(*e, "sheenColorFactor", glm::vec3(0.0f), 1.0, document_, where_);
+      material.sheen_color.texture = texture(*e, "sheenColorTexture", Use::colour);
+      material.sheen_roughness.factor = ranged(*e, "sheenRoughnessFactor", 0.0, 0.0, 1.0, document_, where_);
+      material.sheen_roughness.texture = texture(*e, "sheenRoughnessTexture", Use::data_and_alpha);
+    }
+  }
+
+ private:
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+  /// The extension's object, `where_` naming it for messages; none where the material lacks it.
+  const tinygltf::Value* find(const char* name) {
+    const auto found = source_.extensions.find(name);
+    if (found == source_.extensions.end()) return nullptr;
+    where_ = what_ + " " + name;
+    if (!found->second.IsObject()) document_.fail(where_ + " must be an object");
+    return &found->second;
+  }
+
+  TextureRef texture(const tinygltf::Value& object, const char* key, Use use) {
+    return textures_.get(extension_texture(object, key, document_, where_), use, where_ + " " + key);
+  }
+
+  const tinygltf::Material& source_;
+  Textures& textures_;
+  const Document& document_;
+  const std::string& what_;
+  std::string where_;
+};
+
 }  // namespace
 
 void read_materials(const Document& document, Scene& scene) {
@@ -277,6 +409,7 @@ void read_materials(const Document& document, Scene& scene) {
         textures.get(source.emissiveTexture, Use::colour, what + " emissiveTexture");
     material.emissive_strength = emissive_strength(source, document, what);
     material.double_sided = source.doubleSided;
+    ExtensionReader(source, textures, document, what).read(material);
     scene.materials.push_back(std::move(material));
   }
   read_emission_animation(document, scene);

@@ -210,7 +210,9 @@ Scene load_gltf_scene(const std::filesystem::path& file) {
   // Extensions the renderer reads; KHR_materials_variants leaves the default materials, which
   // are what it renders.
   document.require_only({"KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_animation_pointer",
-                         "KHR_materials_variants", "KHR_texture_transform"});
+                         "KHR_materials_variants", "KHR_texture_transform", "KHR_materials_ior",
+                         "KHR_materials_specular", "KHR_materials_transmission", "KHR_materials_volume",
+                         "KHR_materials_clearcoat", "KHR_materials_sheen"});
   Scene scene;
   scene.file = file;
   read_materials(document, scene);

@@ -38,30 +38,26 @@ Ray spawn(const glm::vec3& p, const glm::vec3& geometric_normal, const glm::vec3
   return {offset(p, geometric_normal, d), d};
 }
 
-/// Whether the segment between two surface points is blocked, both ends pushed off their
-/// surfaces towards each other so that neither surface blocks it.
-bool blocked(const Geometry& geometry, const glm::vec3& from, const glm::vec3& from_normal,
-             const glm::vec3& to, const glm::vec3& to_normal) {
-  const glm::vec3 origin = offset(from, from_normal, to - from);
-  const glm::vec3 target = offset(to, to_normal, from - to);
-  const glm::vec3 d = target - origin;
-  const float length = glm::length(d);
-  return length > 0.0f && geometry.occluded({origin, d / length}, length);
-}
-
-/// Whether the way from a surface point to a punctual light is blocked: up to the light's
-/// position (short of it, so that a fixture the light sits on does not hide it), or without end
-/// towards a directional light.
-bool blocked_towards(const Geometry& geometry, const glm::vec3& from, const glm::vec3& from_normal,
-                     const LightSample& light) {
-  if (light.distant) return geometry.occluded(spawn(from, from_normal, light.position), kInfinity);
-  const glm::vec3 origin = offset(from, from_normal, light.position - from);
-  const glm::vec3 d = light.position - origin;
-  const float length = glm::length(d);
-  return length > 0.0f && geometry.occluded({origin, d / length}, length * (1.0f - 1e-4f));
-}
+/// The smooth thin surfaces a shadow ray crosses, one behind the other, before it counts as
+/// blocked; a path passes through as many without scattering (PathTracer::radiance).
+constexpr unsigned kMaxCrossings = 64;
 
 bool is_black(const glm::vec3& c) { return c.r <= 0.0f && c.g <= 0.0f && c.b <= 0.0f; }
+
+/// Whether a ray leaving a surface point along `wi` goes through its material's medium: into the
+/// back of a volume's boundary. Media do not nest: a ray that leaves any other surface is in none.
+const Volume* medium_along(const Material& material, const glm::vec3& geometric_normal, const glm::vec3& wi) {
+  return material.volume && glm::dot(wi, geometric_normal) < 0.0f ? &*material.volume : nullptr;
+}
+
+/// Whether `wi` and `wo` are on the sides of the surface that the shading normal says: the same
+/// for a reflection, opposite for a transmission. Shading normals can send a direction through the
+/// geometric surface (or keep one from crossing it); such directions carry nothing.
+bool consistent_sides(const SurfacePoint& point, const glm::vec3& wo, const glm::vec3& wi) {
+  const float geometric = glm::dot(wi, point.geometric_normal) * glm::dot(wo, point.geometric_normal);
+  const float shading = glm::dot(wi, point.shading_normal) * glm::dot(wo, point.shading_normal);
+  return geometric != 0.0f && (geometric > 0.0f) == (shading > 0.0f);
+}
 
 }  // namespace
 
@@ -82,53 +78,119 @@ struct PathTracer::Vertex {
 
 PathTracer::PathTracer(const Scene& scene, const Geometry& geometry, const Emitters& emitters,
                        const LightStrategy& strategy, unsigned max_depth)
-    : scene_(scene), geometry_(geometry), emitters_(emitters), strategy_(strategy), max_depth_(max_depth) {}
+    : scene_(scene), geometry_(geometry), emitters_(emitters), strategy_(strategy), max_depth_(max_depth) {
+  for (const Material& m : scene.materials) pass_through_materials_.push_back(may_pass_light_straight(m));
+  any_pass_through_ = std::find(pass_through_materials_.begin(), pass_through_materials_.end(), true) !=
+                      pass_through_materials_.end();
+}
 
 PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const {
   PathEstimate out;
   glm::vec3& sum = out.radiance;
   glm::vec3 throughput(1.0f);
-  float bsdf_pdf = 0.0f;  // of the direction that reached this vertex; unused for camera rays
-  ShadingPoint previous{};  // the vertex that direction left; unused for camera rays
-  for (unsigned depth = 0;; ++depth) {
+  // Of the direction that left the last scattering vertex, times the probabilities of the
+  // pass-throughs since: the density with which BSDF sampling found what this ray meets. Unused
+  // for camera rays.
+  float bsdf_pdf = 0.0f;
+  ShadingPoint previous{};  // the last scattering vertex; unused for camera rays
+  float travelled = 0.0f;   // from it to the ray's origin, through pass-throughs
+  const Volume* medium = nullptr;
+  unsigned crossings = 0;
+  for (unsigned depth = 0;;) {
     const std::optional<Hit> hit = geometry_.intersect(ray, kInfinity);
     ++rays;
     if (!hit) break;
+    if (medium) throughput *= medium->transmittance(hit->distance);
     const Vertex vertex{*hit, surface_point(scene_, *hit), -ray.direction};
-    if (depth == 0) out.sees_emitter = emitters_.light_of(hit->triangle).has_value();
-    sum += throughput * emitted(vertex, bsdf_pdf, depth == 0 ? nullptr : &previous);
-    if (depth == max_depth_) break;
+    const float distance = travelled + hit->distance;
+    if (depth == 0 && emitters_.light_of(hit->triangle)) out.sees_emitter = true;
+    sum += throughput * emitted(vertex, bsdf_pdf, depth == 0 ? nullptr : &previous, distance);
 
     const Material& material = scene_.materials[vertex.point.material];
-    const Bsdf bsdf(surface_params(scene_, material, vertex.point.uv), vertex.point.shading_normal);
-    sum += throughput * light_sample(vertex, bsdf, random, rays);
-
-    const auto u = random.floats();
-    const std::optional<BsdfSample> s = bsdf.sample(vertex.wo, {u[0], u[1], u[2]});
+    const bool may_pass = pass_through_materials_[vertex.point.material] && crossings < kMaxCrossings;
+    if (depth == max_depth_ && !may_pass) break;
+    const Bsdf bsdf(surface_params(scene_, material, vertex.point), vertex.point.shading_normal);
+    std::optional<BsdfSample> s;
+    if (depth < max_depth_) {
+      sum += throughput * light_sample(vertex, bsdf, random, rays);
+      const auto u = random.floats();
+      s = bsdf.sample(vertex.wo, {u[0], u[1], u[2]});
+    } else if (const std::optional<PassThrough> through = bsdf.pass_through(vertex.wo)) {
+      // No more scattering, but what lies behind a pane is still found as it would be below the
+      // last depth, so that the light samples that crossed the pane keep their MIS partner.
+      if (random.floats()[0] < through->probability)
+        s = BsdfSample{-vertex.wo, through->transmittance / through->probability, through->probability, true};
+    }
     if (!s) break;
-    // Shading normals can send a direction through the surface; such paths carry nothing.
-    const glm::vec3& ng = vertex.point.geometric_normal;
-    if (glm::dot(s->wi, ng) * glm::dot(vertex.wo, ng) <= 0.0f) break;
     throughput *= s->weight;
     if (is_black(throughput)) break;
+    const glm::vec3& ng = vertex.point.geometric_normal;
+    if (s->pass_through) {
+      // Straight on, as if the surface were not there: the path's last scattering vertex, its
+      // direction's density (times this draw's probability), and its medium stay.
+      ++crossings;
+      bsdf_pdf *= s->pdf;
+      travelled = distance;
+      ray = spawn(vertex.point.position, ng, ray.direction);
+      continue;
+    }
+    if (!consistent_sides(vertex.point, vertex.wo, s->wi)) break;
     bsdf_pdf = s->pdf;
     previous = vertex.shading_point();
+    travelled = 0.0f;
+    medium = medium_along(material, ng, s->wi);
     ray = spawn(vertex.point.position, ng, s->wi);
+    ++depth;
   }
   return out;
 }
 
-/// Emission seen at a vertex, weighed against the light sample that could have found it from
-/// the vertex before (none for a camera ray).
-glm::vec3 PathTracer::emitted(const Vertex& vertex, float bsdf_pdf, const ShadingPoint* from) const {
+/// Emission seen at a vertex `distance` from the last scattering vertex, weighed against the
+/// light sample that could have found it from there (none for a camera ray).
+glm::vec3 PathTracer::emitted(const Vertex& vertex, float bsdf_pdf, const ShadingPoint* from, float distance) const {
   const std::optional<std::uint32_t> light = emitters_.light_of(vertex.hit.triangle);
   if (!light) return glm::vec3(0.0f);
   const glm::vec3 le = emitters_.radiance(*light, vertex.hit.b1, vertex.hit.b2, vertex.wo);
   if (!from || is_black(le)) return le;
-  const float light_pdf = solid_angle_density(
-      strategy_.pdf(*light, vertex.hit.b1, vertex.hit.b2, *from), vertex.hit.distance,
-      glm::dot(vertex.wo, emitters_.normal(*light)));
+  const float light_pdf = solid_angle_density(strategy_.pdf(*light, vertex.hit.b1, vertex.hit.b2, *from), distance,
+                                              glm::dot(vertex.wo, emitters_.normal(*light)));
   return le * power_heuristic(bsdf_pdf, light_pdf);
+}
+
+/// What reaches the end of a shadow ray: every smooth thin surface on the way lets its
+/// straight-through transmittance pass (Bsdf::pass_through), anything else blocks it.
+struct PathTracer::Visibility {
+  glm::vec3 transmittance{1.0f};
+  float probability = 1.0f;  ///< of BSDF sampling passing through those surfaces, for MIS
+};
+
+std::optional<PathTracer::Visibility> PathTracer::visibility(glm::vec3 origin, glm::vec3 direction, float length,
+                                                            std::uint64_t& rays) const {
+  ++rays;
+  if (!any_pass_through_) {
+    if (geometry_.occluded({origin, direction}, length)) return std::nullopt;
+    return Visibility{};
+  }
+  Visibility seen;
+  const bool endless = std::isinf(length);  // towards a directional light
+  const glm::vec3 end = endless ? origin : origin + length * direction;
+  for (unsigned crossed = 0;; ++crossed) {
+    const std::optional<Hit> hit = geometry_.intersect({origin, direction}, length);
+    if (!hit) return seen;
+    const std::uint32_t m = scene_.mesh.materials[hit->triangle];
+    if (!pass_through_materials_[m] || crossed == kMaxCrossings) return std::nullopt;
+    const SurfacePoint point = surface_point(scene_, *hit);
+    const std::optional<PassThrough> through =
+        Bsdf(surface_params(scene_, scene_.materials[m], point), point.shading_normal).pass_through(-direction);
+    if (!through) return std::nullopt;
+    seen.transmittance *= through->transmittance;
+    seen.probability *= through->probability;
+    if (is_black(seen.transmittance)) return std::nullopt;
+    origin = offset(point.position, point.geometric_normal, direction);
+    if (!endless) length = glm::dot(end - origin, direction);
+    ++rays;
+    if (!(length > 0.0f)) return seen;
+  }
 }
 
 /// A light sample seen from a shading point: what it would bring if nothing blocked it.
@@ -154,41 +216,59 @@ std::optional<PathTracer::Connection> PathTracer::connect(const Vertex& vertex, 
     distance = glm::length(to_light);
     if (!(distance > 0.0f)) return std::nullopt;
     wi = to_light / distance;
-    le = s.radiance_towards(-wi);
+    le = s.radiance_towards(-wi) * emitters_.coat_transmittance(s.light, s.b1, s.b2, -wi);
     cos_light = glm::dot(-wi, s.normal);
     pdf = solid_angle_density(s.pdf, distance, cos_light);
   }
   if (is_black(le) || !(pdf > 0.0f)) return std::nullopt;
-  const glm::vec3& ng = vertex.point.geometric_normal;
-  if (glm::dot(wi, ng) * glm::dot(vertex.wo, ng) <= 0.0f) return std::nullopt;
+  if (!consistent_sides(vertex.point, vertex.wo, wi)) return std::nullopt;
   const glm::vec3 f = bsdf.eval(vertex.wo, wi);
   if (is_black(f)) return std::nullopt;
   return Connection{s, wi, distance, cos_light, f * le / pdf};
 }
 
 /// Next-event estimation, weighed against BSDF sampling: a light sample of the strategy, or for
-/// `ris` one resampled from its candidates (resampling.h).
+/// `ris` one resampled from its candidates (resampling.h). The shadow ray crosses smooth thin
+/// surfaces (visibility()).
 ///
 /// MIS weighs the kept point with the strategy's own density (mis_pdf), the density the BSDF
 /// side weighs a hit with (emitted()), so that the two weights sum to one for every path. The
-/// resampled density itself has no closed form; it only sharpens the light side's estimate.
+/// resampled density itself has no closed form; it only sharpens the light side's estimate. Where
+/// the shadow ray crossed surfaces, the BSDF side reaches the light only by passing through each:
+/// its density carries their probabilities, on both sides alike.
 glm::vec3 PathTracer::light_sample(const Vertex& vertex, const Bsdf& bsdf, PathRandom& random,
                                    std::uint64_t& rays) const {
   const std::optional<Resampled<Connection>> chosen = resample<Connection>(
       strategy_, random, vertex.shading_point(), [&](const LightSample& s) { return connect(vertex, bsdf, s); });
   if (!chosen) return glm::vec3(0.0f);
   const Connection& kept = chosen->kept;
-  const glm::vec3& ng = vertex.point.geometric_normal;
-  ++rays;
   const LightSample& light = kept.light;
-  if (light.delta ? blocked_towards(geometry_, vertex.point.position, ng, light)
-                  : blocked(geometry_, vertex.point.position, ng, light.position, light.normal))
-    return glm::vec3(0.0f);
+  const glm::vec3& position = vertex.point.position;
+  const glm::vec3& ng = vertex.point.geometric_normal;
+  // Both ends pushed off their surfaces towards each other, so that neither blocks the ray; a
+  // punctual light is approached short of its position, so that a fixture it sits on does not
+  // hide it, and a directional one without end.
+  const glm::vec3 origin = offset(position, ng, kept.wi);
+  glm::vec3 target;
+  float length;
+  if (light.delta) {
+    target = light.distant ? origin + kept.wi : light.position;
+    length = light.distant ? kInfinity : glm::length(target - origin) * (1.0f - 1e-4f);
+  } else {
+    target = offset(light.position, light.normal, -kept.wi);
+    length = glm::length(target - origin);
+  }
+  if (!(length > 0.0f)) return glm::vec3(0.0f);
+  const std::optional<Visibility> seen =
+      visibility(origin, light.distant ? kept.wi : (target - origin) / glm::length(target - origin), length, rays);
+  if (!seen) return glm::vec3(0.0f);
+  glm::vec3 contribution = kept.unshadowed * seen->transmittance * chosen->scale;
+  if (const Volume* medium = medium_along(scene_.materials[vertex.point.material], ng, kept.wi))
+    contribution *= medium->transmittance(kept.distance);
   // No BSDF sample finds a delta light: its sample takes the whole weight.
-  const float mis = light.delta ? 1.0f
-                                : power_heuristic(solid_angle_density(light.mis_pdf, kept.distance, kept.cos_light),
-                                                  bsdf.pdf(vertex.wo, kept.wi));
-  return kept.unshadowed * (mis * chosen->scale);
+  if (light.delta) return contribution;
+  return contribution * power_heuristic(solid_angle_density(light.mis_pdf, kept.distance, kept.cos_light),
+                                        bsdf.pdf(vertex.wo, kept.wi) * seen->probability);
 }
 
 }  // namespace tracer

@@ -1,6 +1,7 @@
 #include "tracer/scene.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace tracer {
 
@@ -29,6 +30,11 @@ bool Material::emissive() const {
                                           [](glm::vec3 v) { return v.x > 0.0f; })
                             : emissive_strength > 0.0f;
   return factor && strength;
+}
+
+glm::vec3 Volume::transmittance(float distance) const {
+  if (!std::isfinite(attenuation_distance)) return glm::vec3(1.0f);
+  return glm::pow(attenuation_color, glm::vec3(distance / attenuation_distance));
 }
 
 bool Scene::animated() const {

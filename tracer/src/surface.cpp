@@ -1,5 +1,7 @@
 #include "surface.h"
 
+#include "microfacet.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -45,18 +47,34 @@ std::optional<std::array<glm::vec3, 2>> tangent_frame(const Scene& scene, const 
   return std::array{t, sign < 0.0f ? -b : b};
 }
 
-/// The shading normal `n` bent by the material's normal map (glTF: tangent-space RGB in [0, 1]
-/// for [-1, 1], X and Y scaled by the map's scale).
-glm::vec3 mapped_normal(const Scene& scene, const Material& material, const std::uint32_t* v,
+/// The normal `n` bent by a normal map (glTF: tangent-space RGB in [0, 1] for [-1, 1], X and Y
+/// scaled by the map's scale).
+glm::vec3 mapped_normal(const Scene& scene, const TextureRef& map, float scale, const std::uint32_t* v,
                         const Hit& hit, const SurfaceUvs& uv, glm::vec3 n) {
-  const TextureRef& map = material.normal_texture;
   const auto frame = tangent_frame(scene, map, v, hit.b1, hit.b2, n);
   if (!frame) return n;
   const glm::vec3 texel = lookup(scene.textures[std::size_t(map.texture)], texture_uv(map, uv));
   const glm::vec3 local = 2.0f * texel - 1.0f;
-  const glm::vec3 bent = material.normal_scale * (local.x * (*frame)[0] + local.y * (*frame)[1]) + local.z * n;
+  const glm::vec3 bent = scale * (local.x * (*frame)[0] + local.y * (*frame)[1]) + local.z * n;
   const float length = glm::length(bent);
   return length > 0.0f ? bent / length : n;
+}
+
+/// `n` turned to the side of the geometric normal `ng` (pbrt-v4's FaceForward).
+glm::vec3 face_forward(glm::vec3 n, glm::vec3 ng) { return glm::dot(n, ng) < 0.0f ? -n : n; }
+
+float value(const Scene& scene, const ScalarInput& input, const SurfaceUvs& uv) {
+  if (!input.texture.present()) return input.factor;
+  const Texture& texture = scene.textures[std::size_t(input.texture.texture)];
+  const glm::vec2 at = texture_uv(input.texture, uv);
+  const float channel = input.channel == ScalarInput::Channel::alpha ? lookup_alpha(texture, at)
+                                                                      : lookup(texture, at)[int(input.channel)];
+  return input.factor * channel;
+}
+
+glm::vec3 value(const Scene& scene, const ColourInput& input, const SurfaceUvs& uv) {
+  if (!input.texture.present()) return input.factor;
+  return input.factor * lookup(scene.textures[std::size_t(input.texture.texture)], texture_uv(input.texture, uv));
 }
 
 }  // namespace
@@ -89,14 +107,35 @@ SurfacePoint surface_point(const Scene& scene, const Hit& hit) {
   s.uv = surface_uvs(mesh, hit.triangle, hit.b1, hit.b2);
   s.material = mesh.materials[hit.triangle];
   const Material& material = scene.materials[s.material];
+  // The coat has a normal map of its own, or none: the interpolated normal, not the base's map.
+  if (material.coated()) {
+    s.coat_normal = material.clearcoat_normal_texture.present()
+                        ? mapped_normal(scene, material.clearcoat_normal_texture, material.clearcoat_normal_scale, v,
+                                        hit, s.uv, s.shading_normal)
+                        : s.shading_normal;
+    s.coat_normal = face_forward(s.coat_normal, s.geometric_normal);
+  }
   if (material.normal_texture.present())
-    s.shading_normal = mapped_normal(scene, material, v, hit, s.uv, s.shading_normal);
-  if (glm::dot(s.shading_normal, s.geometric_normal) < 0.0f) s.shading_normal = -s.shading_normal;
+    s.shading_normal = mapped_normal(scene, material.normal_texture, material.normal_scale, v, hit, s.uv, s.shading_normal);
+  s.shading_normal = face_forward(s.shading_normal, s.geometric_normal);
   return s;
 }
 
-SurfaceParams surface_params(const Scene& scene, const Material& material, const SurfaceUvs& uv) {
-  SurfaceParams params{material.base_color, material.metallic, material.roughness, material.specular};
+SurfaceParams surface_params(const Scene& scene, const Material& material, const SurfacePoint& point) {
+  const SurfaceUvs& uv = point.uv;
+  SurfaceParams params{material.base_color, material.metallic, material.roughness};
+  params.specular = value(scene, material.specular, uv);
+  params.specular_color = value(scene, material.specular_color, uv);
+  params.ior = material.ior;
+  params.transmission = value(scene, material.transmission, uv);
+  params.thin_walled = !material.volume;
+  if (material.coated()) {
+    params.clearcoat = value(scene, material.clearcoat, uv);
+    params.clearcoat_roughness = value(scene, material.clearcoat_roughness, uv);
+    params.clearcoat_normal = point.coat_normal;
+  }
+  params.sheen_color = value(scene, material.sheen_color, uv);
+  params.sheen_roughness = value(scene, material.sheen_roughness, uv);
   const TextureRef& base = material.base_color_texture;
   if (base.present()) params.base_color *= lookup(scene.textures[std::size_t(base.texture)], texture_uv(base, uv));
   const TextureRef& mr_map = material.metallic_roughness_texture;
@@ -106,6 +145,23 @@ SurfaceParams surface_params(const Scene& scene, const Material& material, const
     params.metallic *= mr.b;
   }
   return params;
+}
+
+float coat_transmittance(const Scene& scene, std::uint32_t triangle, float b1, float b2, glm::vec3 w) {
+  const Mesh& mesh = scene.mesh;
+  const Material& material = scene.materials[mesh.materials[triangle]];
+  if (!material.coated()) return 1.0f;
+  const std::uint32_t* v = &mesh.indices[3 * std::size_t(triangle)];
+  glm::vec3 n = glm::cross(mesh.positions[v[1]] - mesh.positions[v[0]], mesh.positions[v[2]] - mesh.positions[v[0]]);
+  if (!mesh.normals.empty()) n = interpolate(mesh.normals, v, b1, b2);
+  const float length = glm::length(n);
+  const float mu = length > 0.0f ? std::abs(glm::dot(w, n)) / length : 1.0f;
+  return 1.0f - value(scene, material.clearcoat, surface_uvs(mesh, triangle, b1, b2)) * schlick(0.04f, 1.0f, mu);
+}
+
+bool may_pass_light_straight(const Material& material) {
+  if (!material.transmissive() || material.volume) return false;
+  return material.roughness * material.roughness < kMinAlpha || material.metallic_roughness_texture.present();
 }
 
 float opacity_at(const Scene& scene, const Material& material, glm::vec2 uv) {

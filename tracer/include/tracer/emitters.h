@@ -68,8 +68,11 @@ class Emitters {
   /// The light of a scene triangle; none when the triangle does not emit.
   std::optional<std::uint32_t> light_of(std::uint32_t scene_triangle) const;
 
-  /// Radiance leaving a point of a light towards unit direction `w` (linear Rec. 709).
+  /// Radiance leaving a point of a light towards unit direction `w` (linear Rec. 709), through
+  /// its material's clearcoat, if any (coat_transmittance()).
   glm::vec3 radiance(std::uint32_t light, float b1, float b2, glm::vec3 w) const;
+  /// The share of a point's emission that its clearcoat lets out towards unit `w`: 1 uncoated.
+  float coat_transmittance(std::uint32_t light, float b1, float b2, glm::vec3 w) const;
   /// Radiance leaving a point of a light towards its front, whatever the direction, where a
   /// ray stops on it.
   glm::vec3 emission(std::uint32_t light, float b1, float b2) const;

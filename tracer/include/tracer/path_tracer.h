@@ -2,9 +2,11 @@
 // Unidirectional path tracing with next-event estimation: at every surface point one light
 // sample from the strategy and one BSDF sample, combined by multiple importance sampling with
 // the power heuristic. Lights are the scene's emissive triangles and its punctual lights, which
-// no BSDF sample finds; there is no environment.
+// no BSDF sample finds; there is no environment. Smooth thin transmissive surfaces let paths and
+// shadow rays straight through (Bsdf::pass_through); volumes absorb along the segments inside them.
 
 #include <optional>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -46,10 +48,15 @@ class PathTracer {
  private:
   struct Vertex;
   struct Connection;
+  struct Visibility;
   std::optional<Connection> connect(const Vertex& vertex, const Bsdf& bsdf,
                                     const LightSample& light) const;
   /// `from`: the vertex the BSDF sample left, where the light strategy would have been asked.
-  glm::vec3 emitted(const Vertex& vertex, float bsdf_pdf, const ShadingPoint* from) const;
+  glm::vec3 emitted(const Vertex& vertex, float bsdf_pdf, const ShadingPoint* from, float distance) const;
+  /// What a shadow ray from `origin` along unit `direction` lets through over `length`; none
+  /// where it is blocked. Counts the rays it traces.
+  std::optional<Visibility> visibility(glm::vec3 origin, glm::vec3 direction, float length,
+                                       std::uint64_t& rays) const;
   glm::vec3 light_sample(const Vertex& vertex, const Bsdf& bsdf, PathRandom& random,
                          std::uint64_t& rays) const;
 
@@ -58,6 +65,9 @@ class PathTracer {
   const Emitters& emitters_;
   const LightStrategy& strategy_;
   unsigned max_depth_;
+  /// Per material: whether it may let light straight through (surface.h), and whether any does.
+  std::vector<bool> pass_through_materials_;
+  bool any_pass_through_ = false;
 };
 
 }  // namespace tracer

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -97,9 +98,36 @@ enum class AlphaMode : std::uint8_t {
   blend,   ///< a ray stops with probability alpha (stochastic transparency, as Cycles and pbrt-v4)
 };
 
-/// glTF's metallic-roughness material. Texture channels as glTF defines them: base colour RGB
+/// A scalar input of a material extension: its factor times, where it has one, one channel of a
+/// texture (glTF's rule for every factor and texture pair).
+struct ScalarInput {
+  enum class Channel : std::uint8_t { r, g, b, alpha };
+  float factor = 0.0f;
+  TextureRef texture;
+  Channel channel = Channel::r;
+};
+
+/// A colour input of a material extension: its factor times, where it has one, a colour texture
+/// (sRGB-encoded, decoded to linear).
+struct ColourInput {
+  glm::vec3 factor{0.0f};
+  TextureRef texture;
+};
+
+/// KHR_materials_volume: the medium a closed mesh of non-zero thickness encloses, which absorbs
+/// by Beer-Lambert: transmittance attenuation_color^(distance / attenuation_distance).
+struct Volume {
+  glm::vec3 attenuation_color{1.0f};
+  float attenuation_distance = std::numeric_limits<float>::infinity();
+
+  /// The transmittance over `distance` through the medium.
+  glm::vec3 transmittance(float distance) const;
+};
+
+/// glTF's metallic-roughness material and the material extensions the renderer implements
+/// (SurfaceParams says what each does). Texture channels as glTF defines them: base colour RGB
 /// and alpha; roughness in G, metallic in B of the metallic-roughness texture; the tangent-space
-/// normal in RGB of the normal texture.
+/// normal in RGB of the normal texture; the extensions' as each input says.
 struct Material {
   std::string name;
   glm::vec3 base_color{1.0f};
@@ -112,7 +140,19 @@ struct Material {
   TextureRef metallic_roughness_texture;
   TextureRef normal_texture;
   float normal_scale = 1.0f;  ///< scales the tangent-space normal's X and Y
-  float specular = 1.0f;  ///< the dielectric specular layer's weight (SurfaceParams::specular)
+  // KHR_materials_specular, _ior, _transmission, _volume (absent: thin-walled), _clearcoat and
+  // _sheen, with their defaults.
+  ScalarInput specular{1.0f, {}, ScalarInput::Channel::alpha};
+  ColourInput specular_color{glm::vec3(1.0f), {}};
+  float ior = 1.5f;
+  ScalarInput transmission{0.0f, {}, ScalarInput::Channel::r};
+  std::optional<Volume> volume;
+  ScalarInput clearcoat{0.0f, {}, ScalarInput::Channel::r};
+  ScalarInput clearcoat_roughness{0.0f, {}, ScalarInput::Channel::g};
+  TextureRef clearcoat_normal_texture;  ///< none: the coat is not normal-mapped, even where the base is
+  float clearcoat_normal_scale = 1.0f;
+  ColourInput sheen_color{glm::vec3(0.0f), {}};
+  ScalarInput sheen_roughness{0.0f, {}, ScalarInput::Channel::alpha};
   /// Emitted radiance = emissive_factor * emissive texture * emissive_strength
   /// (KHR_materials_emissive_strength), in linear Rec.709.
   glm::vec3 emissive_factor{0.0f};
@@ -139,6 +179,10 @@ struct Material {
   bool emission_animated() const { return emissive_factor_keys || emissive_strength_keys; }
   /// Whether alpha can cut or thin the surface anywhere.
   bool alpha_tested() const { return alpha_mode != AlphaMode::opaque; }
+  /// Whether light can go through the surface somewhere (KHR_materials_transmission).
+  bool transmissive() const { return transmission.factor > 0.0f && metallic < 1.0f; }
+  /// Whether a clearcoat covers any of it (which dims its emission).
+  bool coated() const { return clearcoat.factor > 0.0f; }
 };
 
 /// Every triangle of the scene in world space. Vertices are not shared between primitives.
