@@ -5,7 +5,7 @@ set(TRS_REFERENCE_SPP 1024)
 set(TRS_REFERENCE_SCENES neon-sign gradient-screen mosaic tile-emitter lantern night-street video-wall)
 # The real assets of scenes/real (scenes/real/README.md), by their path under scenes/.
 set(TRS_REFERENCE_REAL_SCENES real/damaged-helmet real/lantern real/boombox real/toy-car real/energy-ball
-    real/spell-disk real/space-exploration real/terrarium-bots real/spaceship-corridor)
+    real/spell-disk real/space-exploration real/terrarium-bots real/spaceship-corridor real/love-neon real/glass-house)
 # The material scenes of scenes/materials: alpha, normal maps, texture transforms and UV sets.
 set(TRS_REFERENCE_MATERIAL_SCENES materials/stained-lamp materials/blend-glass materials/normal-wall
     materials/atlas-sign)
