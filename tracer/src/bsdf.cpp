@@ -93,6 +93,10 @@ Bsdf::Bsdf(const SurfaceParams& params, glm::vec3 normal) {
   f0_ = glm::min(f0_ior * glm::max(params.specular_color, glm::vec3(0.0f)), glm::vec3(1.0f)) * specular;
   f90_ = specular;
   thin_walled_ = params.thin_walled;
+  // What the dielectric layer leaves to the diffuse, averaged over the cosine-weighted hemisphere.
+  const AlbedoTables& tables = AlbedoTables::get();
+  diffuse_remaining_ = 1.0f - (max_component(f0_) * (tables.e1_average(roughness_) - tables.w_average(roughness_)) +
+                               f90_ * tables.w_average(roughness_));
   // A volume of infinite index (ior 0) reflects everything: nothing enters it.
   transmission_ = (thin_walled_ || ior_ > 0.0f) ? std::clamp(params.transmission, 0.0f, 1.0f) * (1.0f - metallic_) : 0.0f;
   clearcoat_ = std::clamp(params.clearcoat, 0.0f, 1.0f);
@@ -198,14 +202,9 @@ Bsdf::Value Bsdf::evaluate(glm::vec3 wo, glm::vec3 wi) const {
                               metallic_ * schlick(base_color_, glm::vec3(1.0f), glm::dot(o, h));
     base += fresnel * specular;
     const float diffuse_weight = 1.0f - metallic_ - transmission_;
-    if (diffuse_weight > 0.0f) {
-      const float remaining = 1.0f - (max_component(f0_) * (AlbedoTables::get().e1_average(roughness_) -
-                                                            AlbedoTables::get().w_average(roughness_)) +
-                                      f90_ * AlbedoTables::get().w_average(roughness_));
-      if (remaining > 1e-4f) {
-        const float coupling = (1.0f - dielectric_albedo(o.z)) * (1.0f - dielectric_albedo(i.z)) / remaining;
-        base += diffuse_weight * base_color_ * (coupling * i.z / kPi);
-      }
+    if (diffuse_weight > 0.0f && diffuse_remaining_ > 1e-4f) {
+      const float coupling = (1.0f - dielectric_albedo(o.z)) * (1.0f - dielectric_albedo(i.z)) / diffuse_remaining_;
+      base += diffuse_weight * base_color_ * (coupling * i.z / kPi);
     }
     if (sheen_max_ > 0.0f) sheen = sheen_color_ * Sheen(sheen_roughness_).reflection(o, i);
     value.pdf += lobes.specular * ggx.reflection_density(o, i) + (lobes.diffuse + lobes.sheen) * i.z / kPi;

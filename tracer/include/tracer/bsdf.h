@@ -109,6 +109,7 @@ class Bsdf {
   float metallic_, roughness_, alpha_;
   glm::vec3 f0_;  ///< the dielectric layer's reflectance at normal incidence (KHR_materials_specular)
   float f90_;     ///< and at grazing: the specular weight
+  float diffuse_remaining_;  ///< 1 - the layer's cosine-weighted average albedo: the coupling's normaliser
   float ior_;
   float transmission_;
   bool thin_walled_;
