@@ -25,7 +25,11 @@ rendered as the file means it. For MASK, Blender 3.4's importer leaves the cut t
 mode ("Alpha Clip" at alphaCutoff), so Cycles would blend a masked texture's fractional alpha:
 the script cuts it in the shader instead, Alpha = 1 - (alpha < cutoff), glTF's rule, in front
 of whatever the importer wired into the Alpha input. Transparent hits count as Cycles'
-transparent bounces (up to 64), apart from the path depth. Normal maps reach Cycles through
+transparent bounces (up to 64), apart from the path depth. A material that is not doubleSided
+emits from its front face alone, as in trs-render: the importer turns doubleSided into Backface
+Culling, which only Eevee reads, and Cycles emits from both faces, so the script multiplies the
+emission by 1 - Backfacing (a light panel 2 cm before a wall would otherwise light the wall behind
+it, and the room round its edges: 3% of the lit-pixel mean in scenes/materials/coated-panel). Normal maps reach Cycles through
 the importer's Normal Map node, with MikkTSpace tangents of the map's UV set (the file's TANGENT
 is not read). Cycles bends a shading normal whose mirror direction of the view would fall below
 the surface back towards the viewer, so steep normal maps seen at grazing angles (the far

@@ -251,6 +251,20 @@ def cut_mask(material):
                principled.inputs["Alpha"])
 
 
+def front_emission(material):
+    """glTF's single-sided emitter (doubleSided false, the importer's Backface Culling, which only
+    Eevee reads) emits from its front face alone, as trs-render's do: the Principled BSDF's
+    Emission Strength times 1 - Backfacing. Cycles emits from both faces: a panel 2 cm before a
+    wall would light the wall behind it and, round its edges, the room."""
+    principled, _ = principled_of(material)
+    if principled is None or not material.use_backface_culling:
+        return
+    nodes = Nodes(material.node_tree)
+    strength = nodes.take(principled.inputs["Emission Strength"])
+    front = nodes.math("SUBTRACT", 1.0, nodes.new("ShaderNodeNewGeometry").outputs["Backfacing"])
+    nodes.feed(nodes.math("MULTIPLY", strength, front), principled.inputs["Emission Strength"])
+
+
 def fix_absorption(material, extensions):
     """KHR_materials_volume's absorption: transmittance attenuationColor^(d / attenuationDistance),
     an absorption coefficient -ln(c) / distance per channel. The importer writes 1 / distance as
@@ -329,7 +343,7 @@ def emission_of(nodes, principled):
     """The Principled BSDF's emission as an Emission node, taken out of it; None where black."""
     colour = nodes.take(principled.inputs["Emission"], reset=(0.0, 0.0, 0.0, 1.0))
     strength = nodes.take(principled.inputs["Emission Strength"], reset=0.0)
-    if not isinstance(colour, bpy.types.NodeSocket) and (max(colour[:3]) == 0 or strength == 0):
+    if not isinstance(colour, bpy.types.NodeSocket) and max(colour[:3]) == 0 or strength == 0.0:
         return None
     return nodes.bsdf("ShaderNodeEmission", Color=colour, Strength=strength)
 
@@ -436,6 +450,7 @@ def set_materials(diffuse, mode):
             continue
         extensions = extensions_of(material)
         cut_mask(material)
+        front_emission(material)
         fix_absorption(material, extensions)
         if diffuse:
             diffuse_surface(material, extensions, mode)
