@@ -29,7 +29,10 @@ transparent bounces (up to 64), apart from the path depth. A material that is no
 emits from its front face alone, as in trs-render: the importer turns doubleSided into Backface
 Culling, which only Eevee reads, and Cycles emits from both faces, so the script multiplies the
 emission by 1 - Backfacing (a light panel 2 cm before a wall would otherwise light the wall behind
-it, and the room round its edges: 3% of the lit-pixel mean in scenes/materials/coated-panel). Normal maps reach Cycles through
+it, and the room round its edges: 3% of the lit-pixel mean in scenes/materials/coated-panel).
+Where the importer multiplies a texture by a colour factor that is not grey (emissiveFactor,
+sheenColorFactor) it links its Mix node's float output, which is 0, so that such an emitter
+renders black: the script links the node's colour output. Normal maps reach Cycles through
 the importer's Normal Map node, with MikkTSpace tangents of the map's UV set (the file's TANGENT
 is not read). Cycles bends a shading normal whose mirror direction of the view would fall below
 the surface back towards the viewer, so steep normal maps seen at grazing angles (the far

@@ -251,6 +251,19 @@ def cut_mask(material):
                principled.inputs["Alpha"])
 
 
+def fix_colour_mixes(material):
+    """Blender 3.4's importer multiplies a texture by a colour factor (emissiveFactor that is not
+    grey, sheenColorFactor) with a Mix node of RGBA data but links the node's float Result, which
+    is 0: such an emitter would be black. Relinks its colour Result."""
+    tree = material.node_tree
+    for link in list(tree.links):
+        node = link.from_node
+        if node.type == "MIX" and node.data_type == "RGBA" and link.from_socket == node.outputs[0]:
+            target = link.to_socket
+            tree.links.remove(link)
+            tree.links.new(node.outputs[2], target)
+
+
 def front_emission(material):
     """glTF's single-sided emitter (doubleSided false, the importer's Backface Culling, which only
     Eevee reads) emits from its front face alone, as trs-render's do: the Principled BSDF's
@@ -449,6 +462,7 @@ def set_materials(diffuse, mode):
         if principled is None:
             continue
         extensions = extensions_of(material)
+        fix_colour_mixes(material)
         cut_mask(material)
         front_emission(material)
         fix_absorption(material, extensions)
