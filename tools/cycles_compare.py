@@ -193,7 +193,13 @@ def compare(scene, out, args):
     if not lit.any():
         sys.exit(f"cycles_compare: {scene}: no lit pixel: every pixel sees an emitter")
     ours_mean, theirs_mean = ours[lit].mean(axis=0), theirs[lit].mean(axis=0)
-    return int(lit.sum()), ours_mean, theirs_mean, float(ours_mean @ REC709_Y) / float(theirs_mean @ REC709_Y)
+    return int(lit.sum()), ours_mean, theirs_mean, ratio(ours_mean, theirs_mean)
+
+
+def ratio(ours, theirs):
+    """The ratio of two mean RGBs' luminances; NaN where Cycles' is 0 (a scene left dark)."""
+    denominator = float(theirs @ REC709_Y)
+    return float(ours @ REC709_Y) / denominator if denominator > 0 else float("nan")
 
 
 def main():
@@ -205,11 +211,11 @@ def main():
     parser.add_argument("--tolerance", type=float, help="exit 1 where the ratio is further than this from 1")
     args = parser.parse_args()
 
-    lit, ours_mean, theirs_mean, ratio = compare(args.scene, args.out, args)
+    lit, ours_mean, theirs_mean, mean_ratio = compare(args.scene, args.out, args)
     print("| scene | lit pixels | trs-render mean (RGB) | Cycles mean (RGB) | trs-render over Cycles |")
     print("|---|---|---|---|---|")
     fmt = lambda m: ", ".join(f"{v:.4g}" for v in m)  # noqa: E731
-    print(f"| {args.scene} | {lit} | {fmt(ours_mean)} | {fmt(theirs_mean)} | {ratio:.3f} |")
+    print(f"| {args.scene} | {lit} | {fmt(ours_mean)} | {fmt(theirs_mean)} | {mean_ratio:.3f} |")
     if args.csv:
         new = not args.csv.exists()
         with args.csv.open("a", newline="") as f:
@@ -217,9 +223,9 @@ def main():
             if new:
                 writer.writerow(["scene", "diffuse", "lit_pixels", "trs_mean_y", "cycles_mean_y", "ratio"])
             writer.writerow([args.scene, args.diffuse, lit, float(ours_mean @ REC709_Y),
-                             float(theirs_mean @ REC709_Y), ratio])
-    if args.tolerance is not None and abs(ratio - 1.0) > args.tolerance:
-        sys.exit(f"cycles_compare: {args.scene}: trs-render's mean is {ratio:.3f} times Cycles', beyond {args.tolerance}")
+                             float(theirs_mean @ REC709_Y), mean_ratio])
+    if args.tolerance is not None and not abs(mean_ratio - 1.0) <= args.tolerance:
+        sys.exit(f"cycles_compare: {args.scene}: trs-render's mean is {mean_ratio:.3f} times Cycles', beyond {args.tolerance}")
 
 
 if __name__ == "__main__":
