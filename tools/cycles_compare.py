@@ -107,6 +107,7 @@ status 1 beyond it). Needs Debian's python3 with python3-numpy and python3-openi
 import argparse
 import csv
 import json
+import re
 import shlex
 import subprocess
 import sys
@@ -130,9 +131,11 @@ def read_rgb(path):
 
 
 def run(command):
+    """Runs `command`, exiting with its output if it fails; returns its standard output."""
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"cycles_compare: {shlex.join(map(str, command))} failed:\n{result.stdout[-2000:]}{result.stderr}")
+    return result.stdout
 
 
 COMPARISON_OPTIONS = ("render", "blender", "diffuse", "transmission", "width", "height", "spp", "cycles_spp",
@@ -167,14 +170,17 @@ def render_cycles(blender, scene, out, width, height, spp, max_depth, diffuse=Fa
                   seed=0, time_limit=0.0, threads=None):
     """Renders glTF file `scene` with Cycles into EXR `out` (tools/cycles_scene.py): Cycles'
     bounces are trs-render's `max_depth` less one; with `time_limit` (seconds) it stops there,
-    short of `spp`."""
+    short of `spp`. Returns the render's time in seconds as Blender reports it (its scene's
+    synchronisation and the samples, not Blender's start), or None where it reports none."""
     options = {"scene": str(Path(scene).resolve()), "out": str(Path(out).resolve()), "width": width,
                "height": height, "spp": spp, "bounces": max_depth - 1, "diffuse": diffuse,
                "transmission": transmission, "seed": seed, "time_limit": time_limit}
     if threads:
         options["threads"] = threads
-    run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python", str(BLENDER_SCRIPT), "--",
-         json.dumps(options)])
+    output = run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python", str(BLENDER_SCRIPT),
+                  "--", json.dumps(options)])
+    times = re.findall(r"Time: (\d+):(\d+\.\d+) \(Saving", output)
+    return int(times[-1][0]) * 60 + float(times[-1][1]) if times else None
 
 
 def compare(scene, out, args):
