@@ -46,7 +46,7 @@ means it and sets the rest (tools/cycles_scene.py), as far as Cycles 3.4 can ren
   times the texture's red). Cycles' transmission refracts at the IOR, on every surface: it has
   no thin-walled surface. A thin pane (no KHR_materials_volume) rendered so bends the light at
   one interface, as a lens would, magnifies what lies behind it (the floor-lamp scene, shade
-  and all, comes out 1.67 times as bright in Cycles as glTF means), totally reflects light
+  and all, comes out 1.5 times as bright in Cycles as glTF means), totally reflects light
   inside a lamp shade, and stops Cycles' shadow rays. That is what a Blender user who opens the
   file sees, but not the file; the comparison renders the file: the Principled BSDF keeps the
   non-transmissive share (Transmission 0), mixed by transmission x (1 - metallic) with a pane of
