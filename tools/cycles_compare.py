@@ -1,21 +1,23 @@
 #!/usr/bin/env python3
 """A glTF scene rendered by trs-render and by Blender's Cycles, as a user who opens the file in
-Blender sees it: the mean over the lit pixels of the two, per channel, and their ratio.
+Blender sees it, its materials as the glTF specification defines them where Blender's importer
+reads them otherwise: the mean over the lit pixels of the two, per channel, and their ratio.
 
 Blender (Debian's `blender`, 3.4) imports the file with its glTF importer in its default
 "Standard" lighting mode, the units trs-render converts punctual lights to (docs/renderer.md,
 "Punctual lights"); Cycles then renders it on the CPU with the file's camera, the same image
 size, the same path depth (Cycles' bounces are trs-render's --max-depth less one), no world
 light, no clamping, no light threshold, punctual lights as points (radius and sun angle 0) and
-Blender's "Standard" view, written as linear EXR. `--diffuse` makes every material Lambertian
-in both: trs-render's --diffuse-materials, and in Cycles each imported Principled BSDF replaced
-by a Diffuse BSDF of its base colour beside its emission, under the importer's coverage and
-normal map: the node that drives the Principled BSDF's Alpha mixes the two with a Transparent
-BSDF (as the Principled BSDF itself does in Cycles), and its Normal Map node feeds the Diffuse
-BSDF's Normal. What is compared is then the lighting, not the two renderers' BSDFs (Cycles'
-Principled diffuse brightens at grazing angles, and trs-render's darkens under its dielectric
-specular layer). The lit pixels are those where no camera sample of trs-render's render sees an
-emitter (its --emitter-mask is 0): where one does, both show the emitter itself.
+Blender's "Standard" view, written as linear EXR (tools/cycles_scene.py runs inside Blender).
+`--diffuse` makes every material Lambertian in both: trs-render's --diffuse-materials, and in
+Cycles each imported Principled BSDF replaced by a Diffuse BSDF of its base colour beside its
+transmission (below) and its emission, under the importer's coverage and normal map: the node
+that drives the Principled BSDF's Alpha mixes the two with a Transparent BSDF (as the Principled
+BSDF itself does in Cycles), and its Normal Map node feeds the Diffuse BSDF's Normal. What is
+compared is then the lighting, not the two renderers' BSDFs (Cycles' Principled diffuse
+brightens at grazing angles, and trs-render's darkens under its dielectric specular layer). The
+lit pixels are those where no camera sample of trs-render's render sees an emitter (its
+--emitter-mask is 0, also through a smooth pane): where one does, both show the emitter itself.
 
 Coverage (glTF's alphaMode) reaches Cycles through the shader alone: Cycles blends by the
 Alpha input and ignores the material's blend mode, which only Eevee reads. BLEND is therefore
@@ -23,14 +25,79 @@ rendered as the file means it. For MASK, Blender 3.4's importer leaves the cut t
 mode ("Alpha Clip" at alphaCutoff), so Cycles would blend a masked texture's fractional alpha:
 the script cuts it in the shader instead, Alpha = 1 - (alpha < cutoff), glTF's rule, in front
 of whatever the importer wired into the Alpha input. Transparent hits count as Cycles'
-transparent bounces (up to 64), apart from the path depth. Normal maps reach Cycles through
+transparent bounces (up to 64), apart from the path depth. A material that is not doubleSided
+emits from its front face alone, as in trs-render: the importer turns doubleSided into Backface
+Culling, which only Eevee reads, and Cycles emits from both faces, so the script multiplies the
+emission by 1 - Backfacing (a light panel 2 cm before a wall would otherwise light the wall behind
+it, and the room round its edges: 3% of the lit-pixel mean in scenes/materials/coated-panel).
+Where the importer multiplies a texture by a colour factor that is not grey (emissiveFactor,
+sheenColorFactor) it links its Mix node's float output, which is 0, so that such an emitter
+renders black: the script links the node's colour output. Normal maps reach Cycles through
 the importer's Normal Map node, with MikkTSpace tangents of the map's UV set (the file's TANGENT
 is not read). Cycles bends a shading normal whose mirror direction of the view would fall below
 the surface back towards the viewer, so steep normal maps seen at grazing angles (the far
 flanks of scenes/materials/normal-wall's cobbles) differ from a renderer that shades them as
 mapped.
 
+The material extensions. Blender 3.4's importer (io_scene_gltf2 3.4.50) reads each into the
+Principled BSDF (version 1, Disney's) or beside it; the script keeps what it reads as glTF
+means it and sets the rest (tools/cycles_scene.py), as far as Cycles 3.4 can render it:
+- KHR_materials_transmission: the importer sets the Principled BSDF's Transmission (factor
+  times the texture's red). Cycles' transmission refracts at the IOR, on every surface: it has
+  no thin-walled surface. A thin pane (no KHR_materials_volume) rendered so bends the light at
+  one interface, as a lens would, magnifies what lies behind it (the floor-lamp scene, shade
+  and all, comes out 1.5 times as bright in Cycles as glTF means), totally reflects light
+  inside a lamp shade, and stops Cycles' shadow rays. That is what a Blender user who opens the
+  file sees, but not the file; the comparison renders the file: the Principled BSDF keeps the
+  non-transmissive share (Transmission 0), mixed by transmission x (1 - metallic) with a pane of
+  glTF's thin dielectric, Schlick's Fresnel F of the layer's f0 and f90 at N.V (a Layer Weight
+  node) between a white GGX Glossy BSDF (the reflection) and, where roughness^2 < 1e-3
+  (trs-render's smooth pane), a Transparent BSDF of the base colour: light straight through,
+  which Cycles' shadow rays cross carrying its colour, as trs-render's cross a smooth thin pane.
+  Where rougher, glTF's transmission is the GGX lobe mirrored through the surface, which Cycles
+  3.4 has no BSDF for: a Translucent BSDF (Lambertian transmission) of the base colour, the
+  closest one that does not bend light. `--transmission importer` renders the importer's
+  refraction instead.
+- KHR_materials_volume: where thicknessFactor > 0 the importer keeps the refraction (right for
+  a volume's boundary) and adds a Volume Absorption node of colour attenuationColor and density
+  1 / attenuationDistance, which Cycles reads as an absorption coefficient (1 - colour) x
+  density: a transmittance exp(-(1 - c) d / D) where glTF's is c^(d / D). The script sets the
+  density to the largest of -ln(c) / D over the channels and the colour so that each channel's
+  coefficient is -ln(c) / D.
+- KHR_materials_ior and _specular: the importer sets the IOR, which in the Principled BSDF
+  drives only the refraction's Fresnel; the reflection's F0 is Specular (0.08 x Specular), which
+  it converts from the IOR only when KHR_materials_specular is present, from the luminance of
+  specularColorFactor, without specularFactor (kept in a node group that renders nothing) and
+  divided by 1 - transmission (infinite at 1), and tints only towards the base colour. The script
+  sets Specular to 0 and adds a GGX Glossy BSDF of the layer's Fresnel, mix(f0, f90, (1 - N.V)^5)
+  per channel with f0 = min(f0(ior) x specularColor, 1) x specularFactor and f90 =
+  specularFactor, times 1 - metallic: coloured, and dimmed at grazing by specularFactor, as
+  glTF's layer is. With specular textures the importer's baked Specular image is kept, times
+  specularFactor.
+- KHR_materials_clearcoat: the importer sets Clearcoat, Clearcoat Roughness and Clearcoat Normal;
+  Cycles' coat is Disney's, a GTR1 lobe weighted 0.25 x clearcoat, over a base it does not dim,
+  emission included. The script sets Clearcoat to 0 and mixes, by clearcoat x Schlick(0.04, 1,
+  N.V) at the coat's normal, the rest (emission included) with a white GGX Glossy BSDF of the
+  coat's roughness and normal: glTF's coat, which dims what lies under it, emission too.
+- KHR_materials_sheen: the importer adds a Velvet BSDF (Ashikhmin's, sigma = sheenRoughness) of
+  the sheen colour to the Principled BSDF, which it leaves undimmed; glTF's sheen is Charlie's,
+  over a base scaled by 1 - max(sheenColor) E(N.V), E its directional albedo. The script scales
+  the Velvet BSDF's colour, per N.V (a Float Curve), to Charlie's albedo at sheenRoughnessFactor
+  (the factor: a roughness texture is not tabulated) and dims the rest by 1 - max(sheenColor)
+  E(N.V); the lobe's shape stays the Velvet's.
+What cannot be matched: a rough thin surface's lobe (Translucent, not the mirrored GGX); the
+Principled BSDF's own diffuse and specular, which it adds without sharing energy where glTF and
+trs-render share it (the base difference in every comparison of materials as authored); the
+Velvet's lobe shape; Cycles' exact Fresnel at refracting surfaces against glTF's Schlick.
+With --diffuse, the transmission stays beside the Diffuse BSDF, mixed by its factor or texture
+and tinted by the base colour, without Fresnel (trs-render's --diffuse-materials drops the
+specular layer): a Transparent BSDF where smooth and thin, a Translucent one where rough and
+thin, a GGX Refraction BSDF at the IOR at a volume's boundary (whose absorption stays); there
+trs-render still reflects totally beyond the critical angle, which Cycles' Refraction BSDF does
+not.
+
   tools/cycles_compare.py SCENE.gltf --render build/bin/trs-render --out DIR [--diffuse]
+      [--transmission gltf|importer]
       [--width 320 --height 180 --spp 256 --cycles-spp 256 --max-depth 3] [--csv FILE]
 
 Writes DIR/trs.exr, DIR/cycles.exr and DIR/trs-mask.exr; prints a Markdown table and the
@@ -39,10 +106,11 @@ status 1 beyond it). Needs Debian's python3 with python3-numpy and python3-openi
 """
 import argparse
 import csv
+import json
+import re
 import shlex
 import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -50,125 +118,8 @@ import OpenImageIO as oiio
 
 REC709_Y = np.array([0.2126, 0.7152, 0.0722])
 
-# Runs inside Blender: imports the glTF and renders it with Cycles as the module docstring says.
-BLENDER_SCRIPT = r"""
-import sys
-import numpy
-numpy.bool = bool  # Blender 3.4's glTF importer calls numpy.bool, gone from Debian's numpy
-import bpy
-
-scene_file, out, width, height, spp, bounces, diffuse = sys.argv[sys.argv.index("--") + 1:]
-bpy.ops.wm.read_factory_settings(use_empty=True)
-bpy.ops.import_scene.gltf(filepath=scene_file, convert_lighting_mode="SPEC")
-scene = bpy.context.scene
-
-
-def input_into(source, target, tree):
-    # `target` takes what drives `source`: its link, else its value.
-    if source.is_linked:
-        tree.links.new(source.links[0].from_socket, target)
-    else:
-        target.default_value = source.default_value
-
-
-def nodes_of(material):
-    # The importer's Principled BSDF and Material Output, or None where it made other nodes.
-    if not material.use_nodes:
-        return None, None
-    tree = material.node_tree
-    principled = next((n for n in tree.nodes if n.type == "BSDF_PRINCIPLED"), None)
-    output = next((n for n in tree.nodes if n.type == "OUTPUT_MATERIAL"), None)
-    return (principled, output) if principled and output else (None, None)
-
-
-def cut_mask(material):
-    # glTF's MASK in the shader: the importer's alpha, cut at the material's alphaCutoff (its
-    # Eevee alpha_threshold) as glTF cuts it, opaque where alpha >= cutoff.
-    principled, _ = nodes_of(material)
-    if principled is None or getattr(material, "blend_method", None) != "CLIP":
-        return
-    tree = material.node_tree
-    below = tree.nodes.new("ShaderNodeMath")
-    below.operation = "LESS_THAN"
-    input_into(principled.inputs["Alpha"], below.inputs[0], tree)
-    below.inputs[1].default_value = material.alpha_threshold
-    kept = tree.nodes.new("ShaderNodeMath")
-    kept.operation = "SUBTRACT"
-    kept.inputs[0].default_value = 1.0
-    tree.links.new(below.outputs[0], kept.inputs[1])
-    tree.links.new(kept.outputs[0], principled.inputs["Alpha"])
-
-
-def diffuse_surface(material):
-    # The importer's Principled BSDF replaced by a Lambertian Diffuse BSDF of its base colour and
-    # normal, plus its emission, the two covered by its alpha as the Principled BSDF covers them.
-    principled, output = nodes_of(material)
-    if principled is None:
-        return
-    tree = material.node_tree
-    diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
-    input_into(principled.inputs["Base Color"], diffuse.inputs["Color"], tree)
-    if principled.inputs["Normal"].is_linked:  # the Normal Map node; unlinked: the shading normal
-        input_into(principled.inputs["Normal"], diffuse.inputs["Normal"], tree)
-    emission = tree.nodes.new("ShaderNodeEmission")
-    input_into(principled.inputs["Emission"], emission.inputs["Color"], tree)
-    input_into(principled.inputs["Emission Strength"], emission.inputs["Strength"], tree)
-    both = tree.nodes.new("ShaderNodeAddShader")
-    tree.links.new(diffuse.outputs["BSDF"], both.inputs[0])
-    tree.links.new(emission.outputs["Emission"], both.inputs[1])
-    surface = both.outputs["Shader"]
-    alpha = principled.inputs["Alpha"]
-    if alpha.is_linked or alpha.default_value < 1.0:
-        covered = tree.nodes.new("ShaderNodeMixShader")
-        input_into(alpha, covered.inputs["Fac"], tree)
-        transparent = tree.nodes.new("ShaderNodeBsdfTransparent")
-        tree.links.new(transparent.outputs["BSDF"], covered.inputs[1])
-        tree.links.new(surface, covered.inputs[2])
-        surface = covered.outputs["Shader"]
-    tree.links.new(surface, output.inputs["Surface"])
-
-
-for material in bpy.data.materials:
-    cut_mask(material)
-    if diffuse == "1":
-        diffuse_surface(material)
-cameras = [o for o in scene.objects if o.type == "CAMERA"]
-if not cameras:
-    sys.exit("cycles_compare: the file has no camera")
-scene.camera = cameras[0]
-for light in bpy.data.lights:
-    light.shadow_soft_size = 0.0
-    if light.type == "SUN":
-        light.angle = 0.0
-world = bpy.data.worlds.new("black")
-world.color = (0.0, 0.0, 0.0)
-scene.world = world
-render = scene.render
-render.engine = "CYCLES"
-render.resolution_x, render.resolution_y, render.resolution_percentage = int(width), int(height), 100
-render.filter_size = 0.01  # a box of one pixel, as trs-render's jittered camera samples
-render.image_settings.file_format = "OPEN_EXR"
-render.image_settings.color_depth = "32"
-render.image_settings.color_mode = "RGB"
-scene.view_settings.view_transform = "Standard"
-scene.view_settings.look = "None"
-scene.view_settings.exposure = 0.0
-cycles = scene.cycles
-cycles.device = "CPU"
-cycles.samples = int(spp)
-cycles.use_adaptive_sampling = False
-cycles.use_denoising = False
-cycles.max_bounces = int(bounces)
-for prop in ("diffuse_bounces", "glossy_bounces", "transmission_bounces", "volume_bounces"):
-    setattr(cycles, prop, int(bounces))
-cycles.transparent_max_bounces = 64
-cycles.sample_clamp_direct = 0.0
-cycles.sample_clamp_indirect = 0.0
-cycles.light_sampling_threshold = 0.0
-cycles.blur_glossy = 0.0
-render.filepath = out
-bpy.ops.render.render(write_still=True)
-"""
+TOOLS = Path(__file__).resolve().parent
+BLENDER_SCRIPT = TOOLS / "cycles_scene.py"  # runs inside Blender: import, materials, render
 
 
 def read_rgb(path):
@@ -180,12 +131,15 @@ def read_rgb(path):
 
 
 def run(command):
+    """Runs `command`, exiting with its output if it fails; returns its standard output."""
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
         sys.exit(f"cycles_compare: {shlex.join(map(str, command))} failed:\n{result.stdout[-2000:]}{result.stderr}")
+    return result.stdout
 
 
-COMPARISON_OPTIONS = ("render", "blender", "diffuse", "width", "height", "spp", "cycles_spp", "max_depth")
+COMPARISON_OPTIONS = ("render", "blender", "diffuse", "transmission", "width", "height", "spp", "cycles_spp",
+                      "max_depth")
 
 
 def add_comparison_options(parser):
@@ -193,6 +147,9 @@ def add_comparison_options(parser):
     parser.add_argument("--render", default="build/bin/trs-render", help="trs-render")
     parser.add_argument("--blender", default="blender")
     parser.add_argument("--diffuse", action="store_true", help="Lambertian materials in both renderers")
+    parser.add_argument("--transmission", choices=("gltf", "importer"), default="gltf",
+                        help="Cycles' thin transmissive surfaces: unbent, as glTF defines them (default), or "
+                             "refracting, as Blender's importer leaves them")
     parser.add_argument("--width", type=int, default=320)
     parser.add_argument("--height", type=int, default=180)
     parser.add_argument("--spp", type=int, default=256, help="trs-render's samples per pixel")
@@ -209,6 +166,48 @@ def comparison_arguments(args):
     return words
 
 
+def render_cycles(blender, scene, out, width, height, spp, max_depth, diffuse=False, transmission="gltf",
+                  seed=0, time_limit=0.0, threads=None):
+    """Renders glTF file `scene` with Cycles into EXR `out` (tools/cycles_scene.py): Cycles'
+    bounces are trs-render's `max_depth` less one; with `time_limit` (seconds) it stops there,
+    short of `spp`. Returns the render's time in seconds as Blender reports it (its scene's
+    synchronisation and the samples, not Blender's start), or None where it reports none."""
+    options = {"scene": str(Path(scene).resolve()), "out": str(Path(out).resolve()), "width": width,
+               "height": height, "spp": spp, "bounces": max_depth - 1, "diffuse": diffuse,
+               "transmission": transmission, "seed": seed, "time_limit": time_limit}
+    if threads:
+        options["threads"] = threads
+    output = run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python", str(BLENDER_SCRIPT),
+                  "--", json.dumps(options)])
+    times = re.findall(r"Time: (\d+):(\d+\.\d+) \(Saving", output)
+    return int(times[-1][0]) * 60 + float(times[-1][1]) if times else None
+
+
+def compare(scene, out, args):
+    """Renders `scene` with both renderers into folder `out` (trs.exr, trs-mask.exr, cycles.exr)
+    at the COMPARISON_OPTIONS of `args`; returns (lit pixels, trs-render's mean RGB over them,
+    Cycles', the ratio of their luminances)."""
+    out.mkdir(parents=True, exist_ok=True)
+    trs, mask, cycles = out / "trs.exr", out / "trs-mask.exr", out / "cycles.exr"
+    run([args.render, scene, "--out", trs, "--emitter-mask", mask, "--spp", str(args.spp), "--width",
+         str(args.width), "--height", str(args.height), "--max-depth", str(args.max_depth), "--quiet",
+         *(["--diffuse-materials"] if args.diffuse else [])])
+    render_cycles(args.blender, scene, cycles, args.width, args.height, args.cycles_spp, args.max_depth,
+                  args.diffuse, args.transmission)
+    ours, theirs, seen = read_rgb(trs), read_rgb(cycles), read_rgb(mask)[..., 0]
+    lit = seen == 0.0
+    if not lit.any():
+        sys.exit(f"cycles_compare: {scene}: no lit pixel: every pixel sees an emitter")
+    ours_mean, theirs_mean = ours[lit].mean(axis=0), theirs[lit].mean(axis=0)
+    return int(lit.sum()), ours_mean, theirs_mean, ratio(ours_mean, theirs_mean)
+
+
+def ratio(ours, theirs):
+    """The ratio of two mean RGBs' luminances; NaN where Cycles' is 0 (a scene left dark)."""
+    denominator = float(theirs @ REC709_Y)
+    return float(ours @ REC709_Y) / denominator if denominator > 0 else float("nan")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("scene", type=Path)
@@ -218,38 +217,21 @@ def main():
     parser.add_argument("--tolerance", type=float, help="exit 1 where the ratio is further than this from 1")
     args = parser.parse_args()
 
-    args.out.mkdir(parents=True, exist_ok=True)
-    trs, mask, cycles = args.out / "trs.exr", args.out / "trs-mask.exr", args.out / "cycles.exr"
-    run([args.render, args.scene, "--out", trs, "--emitter-mask", mask, "--spp", str(args.spp), "--width",
-         str(args.width), "--height", str(args.height), "--max-depth", str(args.max_depth), "--quiet",
-         *(["--diffuse-materials"] if args.diffuse else [])])
-    with tempfile.NamedTemporaryFile("w", suffix=".py") as script:
-        script.write(BLENDER_SCRIPT)
-        script.flush()
-        run([args.blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python", script.name, "--", str(args.scene.resolve()),
-             str(cycles.resolve()), str(args.width), str(args.height), str(args.cycles_spp), str(args.max_depth - 1),
-             "1" if args.diffuse else "0"])
-
-    ours, theirs, seen = read_rgb(trs), read_rgb(cycles), read_rgb(mask)[..., 0]
-    lit = seen == 0.0
-    if not lit.any():
-        sys.exit("cycles_compare: no lit pixel: every pixel sees an emitter")
-    ours_mean, theirs_mean = ours[lit].mean(axis=0), theirs[lit].mean(axis=0)
-    ratio = float(ours_mean @ REC709_Y) / float(theirs_mean @ REC709_Y)
+    lit, ours_mean, theirs_mean, mean_ratio = compare(args.scene, args.out, args)
     print("| scene | lit pixels | trs-render mean (RGB) | Cycles mean (RGB) | trs-render over Cycles |")
     print("|---|---|---|---|---|")
     fmt = lambda m: ", ".join(f"{v:.4g}" for v in m)  # noqa: E731
-    print(f"| {args.scene} | {int(lit.sum())} | {fmt(ours_mean)} | {fmt(theirs_mean)} | {ratio:.3f} |")
+    print(f"| {args.scene} | {lit} | {fmt(ours_mean)} | {fmt(theirs_mean)} | {mean_ratio:.3f} |")
     if args.csv:
         new = not args.csv.exists()
         with args.csv.open("a", newline="") as f:
             writer = csv.writer(f)
             if new:
                 writer.writerow(["scene", "diffuse", "lit_pixels", "trs_mean_y", "cycles_mean_y", "ratio"])
-            writer.writerow([args.scene, args.diffuse, int(lit.sum()), float(ours_mean @ REC709_Y),
-                             float(theirs_mean @ REC709_Y), ratio])
-    if args.tolerance is not None and abs(ratio - 1.0) > args.tolerance:
-        sys.exit(f"cycles_compare: {args.scene}: trs-render's mean is {ratio:.3f} times Cycles', beyond {args.tolerance}")
+            writer.writerow([args.scene, args.diffuse, lit, float(ours_mean @ REC709_Y),
+                             float(theirs_mean @ REC709_Y), mean_ratio])
+    if args.tolerance is not None and not abs(mean_ratio - 1.0) <= args.tolerance:
+        sys.exit(f"cycles_compare: {args.scene}: trs-render's mean is {mean_ratio:.3f} times Cycles', beyond {args.tolerance}")
 
 
 if __name__ == "__main__":

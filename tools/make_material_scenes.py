@@ -9,8 +9,8 @@ for byte:
 
 Each scene is a folder <name>/ as tools/make_scenes.py writes them: <name>.gltf, its buffer
 <name>.bin, its textures (8-bit PNG: colour in sRGB, with alpha where the material has one;
-normal maps as linear data) and render.toml. The extensions a scene uses are listed in
-extensionsUsed and none in extensionsRequired. The scenes are built by tools/scenes_gen/
+normal maps and the extensions' other data as linear values) and render.toml. The extensions a
+scene uses are listed in extensionsUsed and none in extensionsRequired. The scenes are built by tools/scenes_gen/
 (MATERIAL_SCENES); scenes/materials/README.md describes them.
 """
 import sys
@@ -26,7 +26,7 @@ from scenes_gen.gltf import write_scenes  # noqa: E402
 
 def features(doc):
     """What a scene's materials use, in a few words: alpha modes, normal maps, transforms,
-    texture coordinate sets and wrap modes."""
+    texture coordinate sets, wrap modes and the material extensions that change scattering."""
     words = set()
     wraps = {10497: "REPEAT", 33648: "MIRRORED_REPEAT", 33071: "CLAMP_TO_EDGE"}
     for material in doc["materials"]:
@@ -36,6 +36,10 @@ def features(doc):
             words.add(material["alphaMode"])
         infos = [material.get(key) for key in ("emissiveTexture", "normalTexture")]
         infos.append(material["pbrMetallicRoughness"].get("baseColorTexture"))
+        for name, extension in material.get("extensions", {}).items():
+            if name != "KHR_materials_emissive_strength":
+                words.add(name)
+                infos += [value for key, value in extension.items() if key.endswith("Texture")]
         for info in filter(None, infos):
             transform = info.get("extensions", {}).get("KHR_texture_transform")
             if transform is not None:

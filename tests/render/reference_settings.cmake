@@ -6,6 +6,8 @@ set(TRS_REFERENCE_SCENES neon-sign gradient-screen mosaic tile-emitter lantern n
 # The real assets of scenes/real (scenes/real/README.md), by their path under scenes/.
 set(TRS_REFERENCE_REAL_SCENES real/damaged-helmet real/lantern real/boombox real/toy-car real/energy-ball
     real/spell-disk real/space-exploration real/terrarium-bots real/spaceship-corridor real/love-neon real/glass-house)
-# The material scenes of scenes/materials: alpha, normal maps, texture transforms and UV sets.
+# The material scenes of scenes/materials: alpha, normal maps, texture transforms and UV sets, and
+# the material extensions (transmission, volume, ior and specular, clearcoat, sheen).
 set(TRS_REFERENCE_MATERIAL_SCENES materials/stained-lamp materials/blend-glass materials/normal-wall
-    materials/atlas-sign)
+    materials/atlas-sign materials/glass-panes materials/glass-volume materials/ior-specular
+    materials/coated-panel materials/sheen-cloth materials/floor-lamp)

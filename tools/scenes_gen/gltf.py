@@ -145,6 +145,12 @@ class Gltf:
         if cutoff is not None:
             entry["alphaCutoff"] = cutoff
 
+    def set_extension(self, material, extension, properties):
+        """A material extension (KHR_materials_transmission, _volume, _ior, _specular, _clearcoat,
+        _sheen) with its `properties` as the file stores them: textureInfos from texture_info()."""
+        self.use_extension(extension)
+        self.doc["materials"][material].setdefault("extensions", {})[extension] = dict(properties)
+
     def set_normal_texture(self, material, texture, scale=1.0):
         """A tangent-space normal map (a normalTexture textureInfo of linear data) and its scale."""
         self.doc["materials"][material]["normalTexture"] = dict(texture, scale=scale)

@@ -163,3 +163,28 @@ def cylinder(base, radius, height, segments=16):
         mesh.add_grid(lambda s, t, y=y: add(base, add(mul(ring(s), radius * t), (0, y, 0))),
                       lambda s, t, n=n: n, segments, 1)
     return mesh
+
+
+def frustum(base, bottom_radius, top_radius, height, segments=24, top=True):
+    """An upright truncated cone, open at the bottom (a lamp shade): its smooth side facing out,
+    and a flat top facing up unless not `top`. One surface, no thickness: a thin shade."""
+    def ring(s):
+        return (math.sin(2 * math.pi * s), 0.0, math.cos(2 * math.pi * s))
+
+    slope = (bottom_radius - top_radius) / height  # the side's normal leans up by this much
+    mesh = Mesh()
+    mesh.add_grid(lambda s, t: add(base, add(mul(ring(s), top_radius + (bottom_radius - top_radius) * t),
+                                             (0, height * (1 - t), 0))),
+                  lambda s, t: add(ring(s), (0, slope, 0)), segments, 1)
+    if top:
+        mesh.add_grid(lambda s, t: add(base, add(mul(ring(s), top_radius * t), (0, height, 0))),
+                      lambda s, t: (0, 1, 0), segments, 1)
+    return mesh
+
+
+def ellipsoid(center, radii, cols=24, rows=12):
+    """A sphere() stretched along the axes by `radii`, smooth-shaded (a cushion, a pebble)."""
+    mesh = Mesh()
+    mesh.add_grid(lambda s, t: add(center, tuple(r * c for r, c in zip(radii, sphere_direction(s, t)))),
+                  lambda s, t: tuple(c / r for r, c in zip(radii, sphere_direction(s, t))), cols, rows)
+    return mesh
