@@ -113,6 +113,8 @@ const std::vector<Named> kMaterials = {
      }()},
     {"rough glass volume", volume_glass(vec3(1.0f), 0.3f, 1.5f)},
     {"glossy water volume", volume_glass({0.8f, 0.9f, 1.0f}, 0.1f, 1.33f)},
+    // Without a specular layer the boundary still reflects totally from inside.
+    {"glass volume without specular", with_specular(volume_glass(vec3(1.0f), 0.2f, 1.5f), 0.0f, vec3(1.0f), 1.5f)},
     {"clearcoat over red", coated(metal_roughness({0.8f, 0.1f, 0.1f}, 0.0f, 0.7f), 1.0f, 0.2f)},
     {"tilted clearcoat", coated(metal_roughness(vec3(0.5f), 0.3f, 0.5f), 0.7f, 0.4f,
                                 glm::normalize(vec3(0.3f, 0.1f, 1.0f)))},
@@ -249,6 +251,8 @@ const std::vector<ChiSquareCase> kChiSquareCases = {
      }(), 0.7f, 1.0f},
     {"refraction into glass", volume_glass(vec3(1.0f), 0.4f, 1.5f), 0.5f, 1.0f},
     {"refraction out of water", volume_glass(vec3(1.0f), 0.3f, 1.33f), 0.9f, -1.0f},
+    {"total internal reflection without specular",
+     with_specular(volume_glass(vec3(1.0f), 0.3f, 1.5f), 0.0f, vec3(1.0f), 1.5f), 0.5f, -1.0f},
     {"clearcoat", coated(metal_roughness({0.8f, 0.1f, 0.1f}, 0.0f, 0.8f), 1.0f, 0.15f), 0.4f, 1.0f},
     {"clearcoat on a tilted normal", coated(metal_roughness(vec3(0.5f), 0.0f, 0.6f), 1.0f, 0.3f,
                                             glm::normalize(vec3(0.4f, 0.0f, 1.0f))), 0.7f, 1.0f},
@@ -274,6 +278,23 @@ TEST(Bsdf, ChiSquareSampleMatchesPdf) {
   }
 }
 
+TEST(Bsdf, PdfIsPositiveWhereverEvalIs) {
+  // A direction that carries light but that sample() can never draw would bias every estimate
+  // that relies on BSDF sampling to reach it. For random normals, wo and wi on either side:
+  // eval > 0 implies pdf > 0.
+  for (std::uint32_t m = 0; m < kMaterials.size(); ++m) {
+    for (std::uint32_t k = 0; k < 2000; ++k) {
+      const auto [normal, wo] = normal_and_wo(40, m * 2000 + k);
+      const glm::vec4 h = uniforms(41, m * 2000 + k);
+      const vec3 wi = uniform_sphere(h.x, h.y);
+      const Bsdf bsdf(kMaterials[m].params, normal);
+      if (glm::length(bsdf.eval(wo, wi)) > 0.0f) {
+        ASSERT_GT(bsdf.pdf(wo, wi), 0.0f) << kMaterials[m].name << ", draw " << k;
+      }
+    }
+  }
+}
+
 TEST(Bsdf, ChiSquareRejectsWrongPdfs) {
   // The same check has power: draws that pass above, held against a wrong pdf, are rejected at
   // alpha 0.01. The metal against alpha = roughness rather than roughness^2; the refraction
@@ -290,9 +311,9 @@ TEST(Bsdf, ChiSquareRejectsWrongPdfs) {
   SurfaceParams glass = kChiSquareCases[6].params;
   glass.ior = 1.3f;
   expect_rejected(kChiSquareCases[6], glass, 26);
-  SurfaceParams sheen = kChiSquareCases[10].params;
+  SurfaceParams sheen = kChiSquareCases[11].params;
   sheen.sheen_roughness = 0.8f;
-  expect_rejected(kChiSquareCases[10], sheen, 30);
+  expect_rejected(kChiSquareCases[11], sheen, 31);
 }
 
 /// The index of refraction on the side of `w` of a material's surface of normal `normal`.

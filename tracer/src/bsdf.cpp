@@ -145,7 +145,7 @@ float Bsdf::sheen_share(float mu) const {
   return 1.0f - sheen_max_ * AlbedoTables::get().sheen(mu, sheen_roughness_);
 }
 
-Bsdf::Lobes Bsdf::lobes(float mu, float mu_coat) const {
+Bsdf::Lobes Bsdf::lobes(float mu, float mu_coat, bool front) const {
   const float coat_albedo = clearcoat_ * lobe_albedo(kCoatF0, 1.0f, mu_coat, clearcoat_roughness_);
   const float under_coat = 1.0f - coat_albedo;
   const float sheen_albedo = sheen_max_ * AlbedoTables::get().sheen(mu, sheen_roughness_);
@@ -153,19 +153,28 @@ Bsdf::Lobes Bsdf::lobes(float mu, float mu_coat) const {
   const float dielectric = 1.0f - metallic_;
   const float layer = dielectric_albedo(mu);
   const float colour = luminance(base_color_);
+  // Inside a volume, the boundary reflects totally beyond the critical angle whatever the specular
+  // weight (F90 unscaled there): its reflection must stay drawable, and its refraction, which then
+  // dies, rarely drawn. The Fresnel of the macro normal estimates both.
+  const glm::vec2 eta = indices(front);
+  const bool leaving_dense = transmission_ > 0.0f && eta.x > eta.y;
+  const float macro_fresnel = max_component(dielectric_fresnel(mu, eta.x, eta.y));
   float transmitted;  // an estimate of what the transmission lobe lets through, per unit of its weight
   if (thin_walled_ && smooth_) {
-    transmitted = 1.0f - max_component(dielectric_fresnel(mu, 1.0f, 1.0f));
+    transmitted = 1.0f - macro_fresnel;
+  } else if (leaving_dense) {
+    transmitted = (1.0f - macro_fresnel) * AlbedoTables::get().e1(mu, roughness_);
   } else {
     transmitted = AlbedoTables::get().e1(mu, roughness_) - layer;
   }
-  const float specular =
-      dielectric * luminance(lobe_albedo(f0_, f90_, mu, roughness_)) +
-      metallic_ * luminance(lobe_albedo(base_color_, 1.0f, mu, roughness_));
+  const float reflected = leaving_dense ? macro_fresnel * AlbedoTables::get().e1(mu, roughness_)
+                                        : luminance(lobe_albedo(f0_, f90_, mu, roughness_));
+  const float specular = dielectric * reflected + metallic_ * luminance(lobe_albedo(base_color_, 1.0f, mu, roughness_));
+  const float specular_weight = leaving_dense ? 1.0f : std::max(max_component(f0_), f90_);
   Lobes lobes;
   lobes.coat = selection(clearcoat_, coat_albedo);
   lobes.sheen = selection(under_coat * sheen_max_, sheen_albedo);
-  lobes.specular = selection(base * (dielectric * std::max(max_component(f0_), f90_) + metallic_), specular);
+  lobes.specular = selection(base * (dielectric * specular_weight + metallic_), specular);
   lobes.transmission = selection(base * transmission_ * colour, transmitted);
   lobes.diffuse = selection(base * (dielectric - transmission_) * colour, 1.0f - layer);
   const float total = lobes.coat + lobes.sheen + lobes.specular + lobes.transmission + lobes.diffuse;
@@ -189,7 +198,7 @@ Bsdf::Value Bsdf::evaluate(glm::vec3 wo, glm::vec3 wi) const {
     o.z = -o.z;
     i.z = -i.z;
   }
-  const Lobes lobes = this->lobes(o.z, std::abs(glm::dot(wo, coat_normal_)));
+  const Lobes lobes = this->lobes(o.z, std::abs(glm::dot(wo, coat_normal_)), front);
   const Ggx ggx{alpha_};
   Value value;
   glm::vec3 base(0.0f);  // the material under the sheen and the coat
@@ -263,7 +272,7 @@ std::optional<PassThrough> Bsdf::pass_through(glm::vec3 wo) const {
   const float mu = std::abs(glm::dot(wo, normal_));
   if (!(mu > 0.0f)) return std::nullopt;
   const float mu_coat = std::abs(glm::dot(wo, coat_normal_));
-  const float probability = lobes(mu, mu_coat).transmission;
+  const float probability = lobes(mu, mu_coat, true).transmission;
   if (!(probability > 0.0f)) return std::nullopt;
   // Straight through, the microfacet normal is the surface's: the Fresnel of wo itself, and every
   // layer above takes its share at the same cosine on both sides.
@@ -277,7 +286,7 @@ std::optional<BsdfSample> Bsdf::sample(glm::vec3 wo, glm::vec3 u) const {
   if (o.z == 0.0f || !std::isfinite(o.z)) return std::nullopt;
   const bool front = o.z > 0.0f;
   if (!front) o.z = -o.z;
-  const Lobes lobes = this->lobes(o.z, std::abs(glm::dot(wo, coat_normal_)));
+  const Lobes lobes = this->lobes(o.z, std::abs(glm::dot(wo, coat_normal_)), front);
   // Each lobe's draw must land where that lobe's own density is non-zero (a reflection on wo's
   // side, a transmission across), or the mixture's pdf would not count the way it got there.
   float pick = u.x;

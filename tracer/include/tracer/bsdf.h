@@ -98,8 +98,9 @@ class Bsdf {
   /// coat's normal and of the shading normal.
   float coat_share(float mu_coat) const;
   float sheen_share(float mu) const;
-  /// The lobes as wo sees them: `mu` its cosine to the shading normal, `mu_coat` to the coat's.
-  Lobes lobes(float mu, float mu_coat) const;
+  /// The lobes as wo sees them: `mu` its cosine to the shading normal, `mu_coat` to the coat's,
+  /// from the front (outside) or not.
+  Lobes lobes(float mu, float mu_coat, bool front) const;
   Value evaluate(glm::vec3 wo, glm::vec3 wi) const;
   /// The front and back indices as wo sees them: (1, ior) from the front of a volume, (ior, 1)
   /// from inside; 1 and 1 for a thin surface.
