@@ -34,7 +34,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "albedo_tables.h"
+#include "tracer/albedo_tables.h"
 #include "luminance.h"
 #include "microfacet.h"
 #include "sheen.h"
@@ -61,12 +61,11 @@ glm::vec3 reflect(glm::vec3 o, glm::vec3 h) { return 2.0f * glm::dot(o, h) * h -
 
 glm::vec3 mirror(glm::vec3 w) { return {w.x, w.y, -w.z}; }
 
-/// The directional albedo of a GGX lobe of Fresnel f0 + (f90 - f0) (1 - wo.h)^5.
-template <class T>
-T lobe_albedo(T f0, float f90, float mu, float roughness) {
-  const AlbedoTables& tables = AlbedoTables::get();
-  const float e1 = tables.e1(mu, roughness), w = tables.w(mu, roughness);
-  return f0 * (e1 - w) + T(f90) * w;
+/// The directional albedo of a GGX lobe of Fresnel f0 + (f90 - f0) (1 - wo.h)^5, its roughness's row
+/// of the tables fixed.
+float lobe_albedo(const AlbedoTables::Row<glm::vec2>& row, float f0, float f90, float mu) {
+  const glm::vec2 e = row.at(mu);
+  return f0 * (e.x - e.y) + f90 * e.y;
 }
 
 /// A lobe's selection weight: its coefficient (0 where the lobe is absent) times an estimate of its
@@ -74,11 +73,6 @@ T lobe_albedo(T f0, float f90, float mu, float roughness) {
 float selection(float coefficient, float estimate) { return coefficient * std::max(estimate, 0.01f); }
 
 }  // namespace
-
-struct Bsdf::Lobes {
-  // Probabilities, summing to 1 (all 0 where nothing scatters).
-  float coat = 0.0f, sheen = 0.0f, specular = 0.0f, transmission = 0.0f, diffuse = 0.0f;
-};
 
 Bsdf::Bsdf(const SurfaceParams& params, glm::vec3 normal) {
   // Out-of-range inputs would make 1 - metallic negative or alpha above 1, breaking energy bounds.
@@ -95,8 +89,9 @@ Bsdf::Bsdf(const SurfaceParams& params, glm::vec3 normal) {
   thin_walled_ = params.thin_walled;
   // What the dielectric layer leaves to the diffuse, averaged over the cosine-weighted hemisphere.
   const AlbedoTables& tables = AlbedoTables::get();
-  diffuse_remaining_ = 1.0f - (max_component(f0_) * (tables.e1_average(roughness_) - tables.w_average(roughness_)) +
-                               f90_ * tables.w_average(roughness_));
+  ggx_row_ = tables.ggx(roughness_);
+  const glm::vec2 average = tables.ggx_average(roughness_);
+  diffuse_remaining_ = 1.0f - (max_component(f0_) * (average.x - average.y) + f90_ * average.y);
   // A volume of infinite index (ior 0) reflects everything: nothing enters it.
   transmission_ = (thin_walled_ || ior_ > 0.0f) ? std::clamp(params.transmission, 0.0f, 1.0f) * (1.0f - metallic_) : 0.0f;
   clearcoat_ = std::clamp(params.clearcoat, 0.0f, 1.0f);
@@ -105,11 +100,15 @@ Bsdf::Bsdf(const SurfaceParams& params, glm::vec3 normal) {
   sheen_color_ = glm::clamp(params.sheen_color, glm::vec3(0.0f), glm::vec3(1.0f));
   sheen_roughness_ = std::clamp(params.sheen_roughness, 0.0f, 1.0f);
   sheen_max_ = max_component(sheen_color_);
+  // The layers' tables and the coat's frame only where there are layers: most surfaces have none.
+  if (clearcoat_ > 0.0f) coat_row_ = tables.ggx(clearcoat_roughness_);
+  if (sheen_max_ > 0.0f) sheen_row_ = AlbedoTables::sheen(sheen_roughness_);
   const Frame shading(normal);
   tangent_ = shading.tangent;
   bitangent_ = shading.bitangent;
   normal_ = normal;
-  const Frame coat(params.clearcoat_normal == glm::vec3(0.0f) ? normal : params.clearcoat_normal);
+  const bool own_coat_normal = clearcoat_ > 0.0f && params.clearcoat_normal != glm::vec3(0.0f);
+  const Frame coat = own_coat_normal ? Frame(params.clearcoat_normal) : shading;
   coat_tangent_ = coat.tangent;
   coat_bitangent_ = coat.bitangent;
   coat_normal_ = coat.normal;
@@ -133,49 +132,43 @@ glm::vec3 Bsdf::dielectric_fresnel(float cos_theta, float eta_from, float eta_to
   return schlick(f0_, glm::vec3(f90_), c);
 }
 
-float Bsdf::dielectric_albedo(float mu) const { return lobe_albedo(max_component(f0_), f90_, mu, roughness_); }
+float Bsdf::dielectric_albedo(float mu) const { return lobe_albedo(ggx_row_, max_component(f0_), f90_, mu); }
 
 float Bsdf::coat_share(float mu_coat) const {
   if (clearcoat_ == 0.0f) return 1.0f;
-  return 1.0f - clearcoat_ * lobe_albedo(kCoatF0, 1.0f, mu_coat, clearcoat_roughness_);
+  return 1.0f - clearcoat_ * lobe_albedo(coat_row_, kCoatF0, 1.0f, mu_coat);
 }
 
 float Bsdf::sheen_share(float mu) const {
   if (sheen_max_ == 0.0f) return 1.0f;
-  return 1.0f - sheen_max_ * AlbedoTables::get().sheen(mu, sheen_roughness_);
+  return 1.0f - sheen_max_ * sheen_row_.at(mu);
 }
 
 Bsdf::Lobes Bsdf::lobes(float mu, float mu_coat, bool front) const {
-  const float coat_albedo = clearcoat_ * lobe_albedo(kCoatF0, 1.0f, mu_coat, clearcoat_roughness_);
+  // Estimates of each lobe's albedo at wo, which set only how often each is drawn (any positive
+  // choice is unbiased): Schlick's Fresnel of the macro normal rather than the tables, where
+  // those are not needed for the layers' shares anyway.
+  const float coat_albedo = clearcoat_ > 0.0f ? clearcoat_ * lobe_albedo(coat_row_, kCoatF0, 1.0f, mu_coat) : 0.0f;
   const float under_coat = 1.0f - coat_albedo;
-  const float sheen_albedo = sheen_max_ * AlbedoTables::get().sheen(mu, sheen_roughness_);
+  const float sheen_albedo = sheen_max_ > 0.0f ? sheen_max_ * sheen_row_.at(mu) : 0.0f;
   const float base = under_coat * (1.0f - sheen_albedo);
   const float dielectric = 1.0f - metallic_;
-  const float layer = dielectric_albedo(mu);
   const float colour = luminance(base_color_);
   // Inside a volume, the boundary reflects totally beyond the critical angle whatever the specular
   // weight (F90 unscaled there): its reflection must stay drawable, and its refraction, which then
-  // dies, rarely drawn. The Fresnel of the macro normal estimates both.
+  // dies, rarely drawn.
   const glm::vec2 eta = indices(front);
   const bool leaving_dense = transmission_ > 0.0f && eta.x > eta.y;
-  const float macro_fresnel = max_component(dielectric_fresnel(mu, eta.x, eta.y));
-  float transmitted;  // an estimate of what the transmission lobe lets through, per unit of its weight
-  if (thin_walled_ && smooth_) {
-    transmitted = 1.0f - macro_fresnel;
-  } else if (leaving_dense) {
-    transmitted = (1.0f - macro_fresnel) * AlbedoTables::get().e1(mu, roughness_);
-  } else {
-    transmitted = AlbedoTables::get().e1(mu, roughness_) - layer;
-  }
-  const float reflected = leaving_dense ? macro_fresnel * AlbedoTables::get().e1(mu, roughness_)
-                                        : luminance(lobe_albedo(f0_, f90_, mu, roughness_));
-  const float specular = dielectric * reflected + metallic_ * luminance(lobe_albedo(base_color_, 1.0f, mu, roughness_));
+  const glm::vec3 fresnel = dielectric_fresnel(mu, eta.x, eta.y);
+  const float layer = max_component(fresnel);
+  const float reflected = dielectric * luminance(fresnel) +
+                          (metallic_ > 0.0f ? metallic_ * luminance(schlick(base_color_, glm::vec3(1.0f), mu)) : 0.0f);
   const float specular_weight = leaving_dense ? 1.0f : std::max(max_component(f0_), f90_);
   Lobes lobes;
   lobes.coat = selection(clearcoat_, coat_albedo);
   lobes.sheen = selection(under_coat * sheen_max_, sheen_albedo);
-  lobes.specular = selection(base * (dielectric * specular_weight + metallic_), specular);
-  lobes.transmission = selection(base * transmission_ * colour, transmitted);
+  lobes.specular = selection(base * (dielectric * specular_weight + metallic_), reflected);
+  lobes.transmission = selection(base * transmission_ * colour, 1.0f - layer);
   lobes.diffuse = selection(base * (dielectric - transmission_) * colour, 1.0f - layer);
   const float total = lobes.coat + lobes.sheen + lobes.specular + lobes.transmission + lobes.diffuse;
   if (!(total > 0.0f)) return {};
@@ -187,45 +180,63 @@ Bsdf::Lobes Bsdf::lobes(float mu, float mu_coat, bool front) const {
   return lobes;
 }
 
+const Bsdf::Outgoing& Bsdf::outgoing(glm::vec3 wo) const {
+  if (has_outgoing_ && outgoing_.wo == wo) return outgoing_;
+  Outgoing& out = outgoing_;
+  out.wo = wo;
+  has_outgoing_ = true;
+  out.o = {glm::dot(wo, tangent_), glm::dot(wo, bitangent_), glm::dot(wo, normal_)};
+  out.scatters = out.o.z != 0.0f && std::isfinite(out.o.z);
+  if (!out.scatters) return out;
+  // Work with wo above the surface: the lobes are isotropic, so mirroring both directions
+  // through the tangent plane changes nothing but the side, which `front` keeps for a volume's
+  // indices.
+  out.front = out.o.z > 0.0f;
+  out.o.z = std::abs(out.o.z);
+  out.coat_o = {glm::dot(wo, coat_tangent_), glm::dot(wo, coat_bitangent_), std::abs(glm::dot(wo, coat_normal_))};
+  out.lobes = lobes(out.o.z, out.coat_o.z, out.front);
+  out.layer_albedo = dielectric_albedo(out.o.z);
+  out.sheen_share = sheen_share(out.o.z);
+  out.coat_share = coat_share(out.coat_o.z);
+  return out;
+}
+
 Bsdf::Value Bsdf::evaluate(glm::vec3 wo, glm::vec3 wi) const {
-  glm::vec3 o{glm::dot(wo, tangent_), glm::dot(wo, bitangent_), glm::dot(wo, normal_)};
+  const Outgoing& out = outgoing(wo);
+  if (!out.scatters) return {};
+  const glm::vec3& o = out.o;
   glm::vec3 i{glm::dot(wi, tangent_), glm::dot(wi, bitangent_), glm::dot(wi, normal_)};
-  if (o.z == 0.0f || !std::isfinite(o.z)) return {};
-  const bool front = o.z > 0.0f;
-  // Work with wo above the surface: the lobes are isotropic, so mirroring both through the tangent
-  // plane changes nothing but the side, which `front` keeps for a volume's indices.
-  if (!front) {
-    o.z = -o.z;
-    i.z = -i.z;
-  }
-  const Lobes lobes = this->lobes(o.z, std::abs(glm::dot(wo, coat_normal_)), front);
+  if (!out.front) i.z = -i.z;
+  const Lobes& lobes = out.lobes;
   const Ggx ggx{alpha_};
   Value value;
   glm::vec3 base(0.0f);  // the material under the sheen and the coat
   glm::vec3 sheen(0.0f);
   if (i.z > 0.0f) {
     const glm::vec3 h = glm::normalize(o + i);
-    const glm::vec2 eta = indices(front);
-    const float specular = ggx.reflection(o, i) * i.z;
-    const glm::vec3 fresnel = (1.0f - metallic_) * dielectric_fresnel(glm::dot(o, h), eta.x, eta.y) +
-                              metallic_ * schlick(base_color_, glm::vec3(1.0f), glm::dot(o, h));
+    const float oh = glm::dot(o, h);
+    const glm::vec2 eta = indices(out.front);
+    const float specular = ggx.reflection(o, i, h) * i.z;
+    glm::vec3 fresnel = (1.0f - metallic_) * dielectric_fresnel(oh, eta.x, eta.y);
+    if (metallic_ > 0.0f) fresnel += metallic_ * schlick(base_color_, glm::vec3(1.0f), oh);
     base += fresnel * specular;
     const float diffuse_weight = 1.0f - metallic_ - transmission_;
     if (diffuse_weight > 0.0f && diffuse_remaining_ > 1e-4f) {
-      const float coupling = (1.0f - dielectric_albedo(o.z)) * (1.0f - dielectric_albedo(i.z)) / diffuse_remaining_;
+      const float coupling = (1.0f - out.layer_albedo) * (1.0f - dielectric_albedo(i.z)) / diffuse_remaining_;
       base += diffuse_weight * base_color_ * (coupling * i.z / kPi);
     }
     if (sheen_max_ > 0.0f) sheen = sheen_color_ * Sheen(sheen_roughness_).reflection(o, i);
-    value.pdf += lobes.specular * ggx.reflection_density(o, i) + (lobes.diffuse + lobes.sheen) * i.z / kPi;
+    value.pdf += lobes.specular * ggx.reflection_density(o, h) + (lobes.diffuse + lobes.sheen) * i.z / kPi;
   } else if (i.z < 0.0f && transmission_ > 0.0f && !(thin_walled_ && smooth_)) {
     const glm::vec3 tint = transmission_ * base_color_;
     if (thin_walled_) {
       const glm::vec3 m = mirror(i);
       const glm::vec3 h = glm::normalize(o + m);
-      base += tint * (1.0f - max_component(dielectric_fresnel(glm::dot(o, h), 1.0f, 1.0f))) * (ggx.reflection(o, m) * m.z);
-      value.pdf += lobes.transmission * ggx.reflection_density(o, m);
+      const float fresnel = max_component(dielectric_fresnel(glm::dot(o, h), 1.0f, 1.0f));
+      base += tint * ((1.0f - fresnel) * ggx.reflection(o, m, h) * m.z);
+      value.pdf += lobes.transmission * ggx.reflection_density(o, h);
     } else {
-      const glm::vec2 eta = indices(front);
+      const glm::vec2 eta = indices(out.front);
       const float etap = eta.y / eta.x;  // the index on wi's side over wo's
       glm::vec3 h = glm::normalize(i * etap + o);
       if (h.z < 0.0f) h = -h;
@@ -241,22 +252,18 @@ Bsdf::Value Bsdf::evaluate(glm::vec3 wo, glm::vec3 wi) const {
     }
   }
   const float mu_i = std::abs(i.z);
-  const float sheen_scale = std::min(sheen_share(o.z), sheen_share(mu_i));
-  glm::vec3 f = sheen + sheen_scale * base;
+  glm::vec3 f = sheen_max_ > 0.0f ? sheen + std::min(out.sheen_share, sheen_share(mu_i)) * base : base;
   if (clearcoat_ > 0.0f) {
-    glm::vec3 oc{glm::dot(wo, coat_tangent_), glm::dot(wo, coat_bitangent_), glm::dot(wo, coat_normal_)};
+    const glm::vec3& oc = out.coat_o;
     glm::vec3 ic{glm::dot(wi, coat_tangent_), glm::dot(wi, coat_bitangent_), glm::dot(wi, coat_normal_)};
-    if (oc.z < 0.0f) {
-      oc.z = -oc.z;
-      ic.z = -ic.z;
-    }
-    f *= std::min(coat_share(oc.z), coat_share(std::abs(ic.z)));
+    if (glm::dot(wo, coat_normal_) < 0.0f) ic.z = -ic.z;
+    f *= std::min(out.coat_share, coat_share(std::abs(ic.z)));
     if (oc.z > 0.0f && ic.z > 0.0f) {
       const Ggx coat{clearcoat_alpha_};
       const glm::vec3 h = glm::normalize(oc + ic);
       // The coat's f, times the cosine of wi to the shading normal, as every lobe's.
-      f += glm::vec3(clearcoat_ * schlick(kCoatF0, 1.0f, glm::dot(oc, h)) * coat.reflection(oc, ic) * mu_i);
-      value.pdf += lobes.coat * coat.reflection_density(oc, ic);
+      f += glm::vec3(clearcoat_ * schlick(kCoatF0, 1.0f, glm::dot(oc, h)) * coat.reflection(oc, ic, h) * mu_i);
+      value.pdf += lobes.coat * coat.reflection_density(oc, h);
     }
   }
   value.f_cos = f;
@@ -269,32 +276,28 @@ float Bsdf::pdf(glm::vec3 wo, glm::vec3 wi) const { return evaluate(wo, wi).pdf;
 
 std::optional<PassThrough> Bsdf::pass_through(glm::vec3 wo) const {
   if (!(thin_walled_ && smooth_ && transmission_ > 0.0f)) return std::nullopt;
-  const float mu = std::abs(glm::dot(wo, normal_));
-  if (!(mu > 0.0f)) return std::nullopt;
-  const float mu_coat = std::abs(glm::dot(wo, coat_normal_));
-  const float probability = lobes(mu, mu_coat, true).transmission;
-  if (!(probability > 0.0f)) return std::nullopt;
+  const Outgoing& out = outgoing(wo);
+  if (!out.scatters || !(out.lobes.transmission > 0.0f)) return std::nullopt;
   // Straight through, the microfacet normal is the surface's: the Fresnel of wo itself, and every
   // layer above takes its share at the same cosine on both sides.
-  const glm::vec3 transmittance = coat_share(mu_coat) * sheen_share(mu) * transmission_ * base_color_ *
-                                  (1.0f - max_component(dielectric_fresnel(mu, 1.0f, 1.0f)));
-  return PassThrough{transmittance, probability};
+  const glm::vec3 transmittance = out.coat_share * out.sheen_share * transmission_ * base_color_ *
+                                  (1.0f - max_component(dielectric_fresnel(out.o.z, 1.0f, 1.0f)));
+  return PassThrough{transmittance, out.lobes.transmission};
 }
 
 std::optional<BsdfSample> Bsdf::sample(glm::vec3 wo, glm::vec3 u) const {
-  glm::vec3 o{glm::dot(wo, tangent_), glm::dot(wo, bitangent_), glm::dot(wo, normal_)};
-  if (o.z == 0.0f || !std::isfinite(o.z)) return std::nullopt;
-  const bool front = o.z > 0.0f;
-  if (!front) o.z = -o.z;
-  const Lobes lobes = this->lobes(o.z, std::abs(glm::dot(wo, coat_normal_)), front);
+  const Outgoing& out = outgoing(wo);
+  if (!out.scatters) return std::nullopt;
+  const glm::vec3& o = out.o;
+  const bool front = out.front;
+  const Lobes& lobes = out.lobes;
   // Each lobe's draw must land where that lobe's own density is non-zero (a reflection on wo's
   // side, a transmission across), or the mixture's pdf would not count the way it got there.
   float pick = u.x;
   glm::vec3 wi;
   if ((pick -= lobes.coat) < 0.0f) {
-    glm::vec3 oc{glm::dot(wo, coat_tangent_), glm::dot(wo, coat_bitangent_), glm::dot(wo, coat_normal_)};
-    const float side = oc.z < 0.0f ? -1.0f : 1.0f;
-    oc.z *= side;
+    const glm::vec3& oc = out.coat_o;
+    const float side = glm::dot(wo, coat_normal_) < 0.0f ? -1.0f : 1.0f;
     glm::vec3 ic = reflect(oc, Ggx{clearcoat_alpha_}.sample_visible(oc, u.y, u.z));
     if (!(ic.z > 0.0f)) return std::nullopt;
     ic.z *= side;

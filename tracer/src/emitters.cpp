@@ -23,6 +23,7 @@ double ms_since(std::chrono::steady_clock::time_point start) {
 Emitters::Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampler, std::int64_t frame,
                    double seconds)
     : scene_(scene),
+      any_coated_(std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.coated(); })),
       punctual_(scene.lights, bounding_radius(scene.mesh.positions)),
       maps_(std::make_unique<EmissionMaps>(scene, frame, seconds)) {
   const auto start = std::chrono::steady_clock::now();
@@ -107,7 +108,7 @@ glm::vec3 Emitters::radiance(std::uint32_t light, float b1, float b2, glm::vec3 
 }
 
 float Emitters::coat_transmittance(std::uint32_t light, float b1, float b2, glm::vec3 w) const {
-  return tracer::coat_transmittance(scene_, scene_triangles_[light], b1, b2, w);
+  return any_coated_ ? tracer::coat_transmittance(scene_, scene_triangles_[light], b1, b2, w) : 1.0f;
 }
 
 bool Emitters::two_sided(std::uint32_t light) const { return (*maps_)[light_maps_[light]].double_sided; }

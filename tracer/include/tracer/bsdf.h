@@ -9,6 +9,8 @@
 
 #include <glm/glm.hpp>
 
+#include "tracer/albedo_tables.h"
+
 namespace tracer {
 
 /// Smallest GGX alpha. Without a delta lobe, eval() and pdf() of a glossy lobe are non-zero
@@ -79,9 +81,24 @@ class Bsdf {
   bool transmits() const { return transmission_ > 0.0f; }
 
  private:
-  /// What depends on wo only: the probabilities with which sample() picks each lobe, and the
-  /// share of the layers under the clearcoat and the sheen.
-  struct Lobes;
+  /// The probabilities with which sample() picks each lobe, as wo sees them: summing to 1 (all 0
+  /// where nothing scatters).
+  struct Lobes {
+    float coat = 0.0f, sheen = 0.0f, specular = 0.0f, transmission = 0.0f, diffuse = 0.0f;
+  };
+  /// What depends on wo alone, kept for the last wo asked about: every query at a path's vertex
+  /// shares one wo. (A Bsdf is therefore not to be queried from two threads at once.)
+  struct Outgoing {  // filled in whole by outgoing() before any use
+    glm::vec3 wo;
+    glm::vec3 o;      ///< wo in the shading frame, mirrored above the surface
+    bool front;       ///< wo on the surface's front side
+    bool scatters;    ///< wo is neither tangent nor malformed
+    Lobes lobes;
+    float layer_albedo;  ///< the dielectric layer's albedo at wo, for the diffuse coupling
+    float sheen_share;   ///< sheen_share() at wo
+    float coat_share;    ///< coat_share() at wo
+    glm::vec3 coat_o;    ///< wo in the coat's frame, mirrored above it
+  };
   /// eval() and pdf() together: sample() returns exactly what they give for its direction.
   struct Value {
     glm::vec3 f_cos{0.0f};
@@ -101,6 +118,7 @@ class Bsdf {
   /// The lobes as wo sees them: `mu` its cosine to the shading normal, `mu_coat` to the coat's,
   /// from the front (outside) or not.
   Lobes lobes(float mu, float mu_coat, bool front) const;
+  const Outgoing& outgoing(glm::vec3 wo) const;
   Value evaluate(glm::vec3 wo, glm::vec3 wi) const;
   /// The front and back indices as wo sees them: (1, ior) from the front of a volume, (ior, 1)
   /// from inside; 1 and 1 for a thin surface.
@@ -111,6 +129,11 @@ class Bsdf {
   glm::vec3 f0_;  ///< the dielectric layer's reflectance at normal incidence (KHR_materials_specular)
   float f90_;     ///< and at grazing: the specular weight
   float diffuse_remaining_;  ///< 1 - the layer's cosine-weighted average albedo: the coupling's normaliser
+  // The albedo tables at this point's roughnesses (albedo_tables.h).
+  AlbedoTables::Row<glm::vec2> ggx_row_, coat_row_;
+  AlbedoTables::Row<float> sheen_row_;
+  mutable Outgoing outgoing_;
+  mutable bool has_outgoing_ = false;
   float ior_;
   float transmission_;
   bool thin_walled_;

@@ -118,6 +118,7 @@ class Emitters {
   void integrate();
 
   const Scene& scene_;
+  bool any_coated_ = false;  ///< whether any material has a clearcoat (which dims emission under it)
   PunctualLights punctual_;
   std::vector<std::uint32_t> scene_triangles_;
   std::vector<std::uint32_t> lights_of_scene_;  ///< per scene triangle; kNotLight if none

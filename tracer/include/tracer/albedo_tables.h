@@ -12,8 +12,13 @@
 // cosine-weighted averages of E1 and W over mu, 2 times the integral of E mu dmu, of the tables
 // as they interpolate. The mu axis is uniform in sqrt(mu): a smooth lobe's albedo drops within a
 // cosine of about alpha of the horizon, where Smith's masking takes over.
+//
+// A surface point has one roughness per lobe: a Row fixes it once, and each lookup then
+// interpolates along mu alone.
 
 #include <array>
+
+#include <glm/glm.hpp>
 
 namespace tracer {
 
@@ -22,26 +27,35 @@ class AlbedoTables {
   static constexpr int kMu = 64;         ///< grid points in sqrt(mu), from 0 to 1
   static constexpr int kRoughness = 32;  ///< grid points in r, from 0 to 1
 
+  /// The tables at one roughness, between two of their rows.
+  template <class T>
+  struct Row {
+    const T* low;
+    const T* high;
+    float t;  ///< from low to high
+
+    /// Linear in sqrt(mu), mu clamped to [0, 1].
+    T at(float mu) const;
+  };
+
   /// The tables, built on first use (thread-safe).
   static const AlbedoTables& get();
 
-  float e1(float mu, float roughness) const { return lookup(e1_, mu, roughness); }
-  float w(float mu, float roughness) const { return lookup(w_, mu, roughness); }
-  float sheen(float mu, float roughness) const { return lookup(sheen_, mu, roughness); }
-  float e1_average(float roughness) const { return lookup_average(e1_average_, roughness); }
-  float w_average(float roughness) const { return lookup_average(w_average_, roughness); }
+  /// E1 and W (x and y) of a GGX lobe of roughness r.
+  Row<glm::vec2> ggx(float roughness) const { return row(ggx_.data(), roughness); }
+  /// Es of a sheen of roughness r: a table of its own, built on first use (most scenes have no
+  /// sheen, and its lobe is the costly one to integrate).
+  static Row<float> sheen(float roughness);
+  /// The cosine-weighted averages of E1 and W (x and y) at roughness r.
+  glm::vec2 ggx_average(float roughness) const;
 
  private:
-  using Table = std::array<float, kMu * kRoughness>;  ///< [r][sqrt(mu)]
-  using Averages = std::array<float, kRoughness>;
-
   AlbedoTables();
-  /// Bilinear in (sqrt(mu), r), both clamped to [0, 1].
-  static float lookup(const Table& table, float mu, float roughness);
-  static float lookup_average(const Averages& averages, float roughness);
+  template <class T>
+  static Row<T> row(const T* table, float roughness);
 
-  Table e1_{}, w_{}, sheen_{};
-  Averages e1_average_{}, w_average_{};
+  std::array<glm::vec2, kMu * kRoughness> ggx_{};  ///< [r][sqrt(mu)]: (E1, W)
+  std::array<glm::vec2, kRoughness> ggx_average_{};
 };
 
 }  // namespace tracer
