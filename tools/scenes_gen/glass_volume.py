@@ -2,10 +2,10 @@
 KHR_materials_ior. A ball of blue-green glass before a wall of coloured stripes shows them
 upside down and tinted; a block of amber glass holds a small glowing cube, whose light reaches the
 room only through it."""
+from .back_lit_room import back_lit_room
 from .gltf import MATERIALS_GENERATOR, Gltf
-from .mesh import Mesh, box, room, sphere
+from .mesh import box, sphere
 from .texture import Texture
-from .vec import axis
 
 STRIPES = [(1.0, 0.3, 0.2), (1.0, 0.7, 0.2), (0.9, 1.0, 0.3), (0.3, 1.0, 0.5), (0.2, 0.8, 1.0),
            (0.4, 0.4, 1.0), (0.9, 0.4, 1.0), (1.0, 1.0, 1.0)]
@@ -41,12 +41,7 @@ def glass_volume():
     (ior 1.33; amber, (0.95, 0.65, 0.25) at 0.5 m) around a 0.16 m cube emitting warm white
     (strength 6). Both meshes are closed; the light of the cube leaves through the block alone."""
     gltf = Gltf("glass-volume", MATERIALS_GENERATOR)
-    gltf.mesh("room", room(-3.0, 3.0, 3.0, -3.0, 4.5), gltf.material("plaster", (0.65,) * 3))
-    light = Mesh()  # 2 cm before the back wall, facing the room
-    light.add_quad((-1.2, 2.3, -2.98), axis(0, 2.4), axis(1, -1.2), (0, 0, 1))
-    wall_light = gltf.material("striped light", (0.02, 0.02, 0.02))
-    gltf.set_emission(wall_light, gltf.texture_info(Texture("stripes.png", 64, 32, stripes(64, 32))), 6.0)
-    gltf.mesh("striped light", light, wall_light)
+    back_lit_room(gltf, "striped light", -1.2, 2.3, 2.4, 1.2, Texture("stripes.png", 64, 32, stripes(64, 32)), 6.0)
 
     gltf.mesh("pedestal", box((-0.7, 0.25, -1.6), (0.4, 0.5, 0.4)), gltf.material("stone", (0.5, 0.48, 0.45)))
     gltf.mesh("glass ball", sphere((-0.7, 1.0, -1.6), 0.5, cols=32, rows=16),

@@ -1,10 +1,11 @@
 """Scene ior-specular (materials): the dielectric layer's strength and colour, KHR_materials_ior
 and KHR_materials_specular. A row of dark glossy balls that differ only there, before a striped
 light: from faint to strong reflections, one weakened, one tinted."""
+from .back_lit_room import back_lit_room
 from .gltf import MATERIALS_GENERATOR, Gltf
-from .mesh import Mesh, room, sphere
+from .mesh import sphere
 from .texture import Texture
-from .vec import axis, smoothstep
+from .vec import smoothstep
 
 # (name, KHR_materials_ior, KHR_materials_specular) of the balls, left to right.
 BALLS = [("ior 1.2", {"ior": 1.2}, None),
@@ -31,12 +32,7 @@ def ior_specular():
     (KHR_materials_ior); specularFactor 0.3; specularColorFactor (3, 1.5, 0.5), a warm
     reflection beyond the ior's (KHR_materials_specular)."""
     gltf = Gltf("ior-specular", MATERIALS_GENERATOR)
-    gltf.mesh("room", room(-3.0, 3.0, 3.0, -3.0, 4.5), gltf.material("plaster", (0.65,) * 3))
-    light = Mesh()  # 2 cm before the back wall, facing the room
-    light.add_quad((-2.2, 2.2, -2.98), axis(0, 4.4), axis(1, -0.8), (0, 0, 1))
-    strip = gltf.material("light strip", (0.02, 0.02, 0.02))
-    gltf.set_emission(strip, gltf.texture_info(Texture("light-strip.png", 64, 32, light_strip(64, 32))), 6.0)
-    gltf.mesh("light strip", light, strip)
+    back_lit_room(gltf, "light strip", -2.2, 2.2, 4.4, 0.8, Texture("light-strip.png", 64, 32, light_strip(64, 32)), 6.0)
     for k, (name, ior, specular) in enumerate(BALLS):
         material = gltf.material(name, (0.04, 0.04, 0.04), 0.0, 0.2)
         if ior is not None:
