@@ -5,6 +5,9 @@
 
 #include <OpenColorIO/OpenColorABI.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -103,6 +107,18 @@ TEST_F(ImageIoTest, ExrRoundTripIsBitExact) {
   trs_test::write_float_exr(file("grey.exr"), 2, 1, 1, {0.25f, 4.0f});
   EXPECT_EQ(trs::read_exr(file("grey.exr")).rgb,
             (std::vector<float>{0.25f, 0.25f, 0.25f, 4.0f, 4.0f, 4.0f}));
+}
+
+// Tiled files are read a row of tiles at a time; the last row and column of tiles are partial.
+TEST_F(ImageIoTest, TiledExrReadsAsItsScanlines) {
+  const int width = 37, height = 23;
+  std::vector<float> rgb(std::size_t(width * height * 3));
+  for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = float(i % 251) * 0.25f;
+  trs_test::write_float_exr(file("tiled.exr"), width, height, 3, rgb, 16);
+  const trs::Image image = trs::read_exr(file("tiled.exr"));
+  EXPECT_EQ(image.width, std::uint32_t(width));
+  EXPECT_EQ(image.height, std::uint32_t(height));
+  EXPECT_EQ(image.rgb, rgb);
 }
 
 // The renders are linear Rec. 709: the EXR says so, for readers that honour its chromaticities.
@@ -387,6 +403,47 @@ TEST_F(ImageIoTest, HugeHeaderIsRefused) {
   write_bytes("huge.ppm", "P6\n100000 100000\n255\n");
   expect_error([&] { trs::read_image(file("huge.ppm")); }, file("huge.ppm"),
                "image is 100000 x 100000 texels, more than the 16384 x 16384");
+  // Fewer texels than 16384 x 16384, but a row longer than the side an image may have.
+  write_bytes("long.ppm", "P6\n16385 1\n255\n");
+  expect_error([&] { trs::read_image(file("long.ppm")); }, file("long.ppm"),
+               "image is 16385 x 1 texels, more than the 16384 x 16384");
+}
+
+/// The peak resident memory `action` adds, in MiB: measured in a child process, where nothing
+/// else the tests did counts. -1 when the action returns instead of throwing.
+long peak_growth_mib_of_refusal(const std::function<void()>& action) {
+  const pid_t child = fork();
+  if (child == 0) {
+    long pages = 0, resident = 0;
+    std::ifstream("/proc/self/statm") >> pages >> resident;
+    const long before_kib = resident * (sysconf(_SC_PAGESIZE) / 1024);
+    try {
+      action();
+      _exit(255);
+    } catch (const std::exception&) {
+    }
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    _exit(int(std::min(254L, std::max(0L, usage.ru_maxrss - before_kib) / 1024)));
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 255;
+  return code == 255 ? -1 : code;
+}
+
+// A header within the limit may claim more rows than the file holds: the file is refused after the
+// rows it has, before the memory its header claims (16384 x 16384 RGB floats: 3 GiB) is touched.
+TEST_F(ImageIoTest, HeaderClaimingMoreThanTheFileHoldsCostsOnlyWhatIsThere) {
+  const fs::path pfm = write_bytes("claims.pfm", "PF\n16384 16384\n-1.0\n" + std::string(96, '\0'));
+  const fs::path png = write_bytes(  // one row of 16-bit RGBA
+      "claims.png", trs_test::png_file(16384, 16384, 4, 16, std::vector<std::uint16_t>(16384 * 4)));
+  for (const fs::path& path : {pfm, png}) {
+    const long growth = peak_growth_mib_of_refusal(
+        [&] { trs::load_density_map(path, trs::MapEncoding::automatic); });
+    EXPECT_GE(growth, 0) << path << " was accepted";
+    EXPECT_LT(growth, 64) << path << " cost " << growth << " MiB before it was refused";
+  }
 }
 
 // A 16-bit PNG whose gAMA chunk says gamma 1 holds linear values. OpenImageIO reads that and the

@@ -49,6 +49,7 @@ struct Header {
   /// The last of 2 or 4 channels is alpha (grey and alpha, RGBA), in the order read() gives them.
   bool alpha = false;
   bool deep = false;
+  int depth = 1;  ///< slices: more than 1 in a volume image
   bool integer = false;          ///< stored as 8- or 16-bit integers
   bool declared_linear = false;  ///< the metadata says linear values, or data that is not colour
 };

@@ -42,6 +42,7 @@ Header header_of(const OIIO::ImageInput& input) {
           .channels = spec.nchannels,
           .alpha = (spec.nchannels == 2 || spec.nchannels == 4) && spec.alpha_channel == spec.nchannels - 1,
           .deep = spec.deep,
+          .depth = spec.depth,
           .integer = integer_format(spec.format),
           .declared_linear = declared_linear(spec)};
 }
@@ -107,13 +108,30 @@ Decoder::~Decoder() = default;
 
 std::vector<float> Decoder::read(int channels) {
   OIIO::ImageInput& input = *state_->input;
-  std::vector<float> pixels(std::size_t(header_.width) * std::size_t(header_.height) *
-                            std::size_t(channels));
-  // Some readers (JPEG) fill a truncated image with grey, report success and only record the
-  // error.
-  if (!input.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()) ||
-      input.has_error()) {
-    throw CodecError(input.geterror());
+  const OIIO::ImageSpec& spec = input.spec();
+  const std::size_t row = std::size_t(spec.width) * std::size_t(channels);
+  // A band of rows at a time, the buffer growing with them (doubling, up to the image's size): a
+  // file whose header claims more rows than its data holds fails after the rows it has, not after
+  // allocating what its header claims.
+  const std::size_t total = row * std::size_t(spec.height);
+  std::vector<float> pixels;
+  const int band = spec.tile_width > 0 ? std::max(spec.tile_height, 1) : 256;
+  for (int y = 0; y < spec.height; y += band) {
+    const int rows = std::min(band, spec.height - y);
+    const std::size_t end = pixels.size() + row * std::size_t(rows);
+    if (end > pixels.capacity()) pixels.reserve(std::min(total, std::max(end, 2 * pixels.capacity())));
+    pixels.resize(end);
+    float* out = pixels.data() + row * std::size_t(y);
+    const bool read =
+        spec.tile_width > 0
+            ? input.read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + y, spec.y + y + rows,
+                               spec.z, spec.z + 1, 0, channels,
+                               OIIO::TypeDesc::FLOAT, out)
+            : input.read_scanlines(0, 0, spec.y + y, spec.y + y + rows, spec.z, 0, channels,
+                                   OIIO::TypeDesc::FLOAT, out);
+    // Some readers (JPEG) fill a truncated image with grey, report success and only record the
+    // error.
+    if (!read || input.has_error()) throw CodecError(input.geterror());
   }
   return pixels;
 }

@@ -31,6 +31,7 @@ DecodedImage decode(image_codec::Decoder& decoder, const std::filesystem::path& 
   auto fail = [&](const std::string& problem) { throw FileError(file, context + problem); };
   const image_codec::Header& header = decoder.header();
   if (header.deep) fail("deep images are not supported");
+  if (header.depth != 1) fail("volume images (" + std::to_string(header.depth) + " slices) are not supported");
   if (header.width <= 0 || header.height <= 0 || header.channels <= 0) fail("image has no pixels");
   check_image_size(file, header.width, header.height);
 

@@ -24,7 +24,7 @@ void check_input_file(const std::filesystem::path& file) {
 }
 
 void check_image_size(const std::filesystem::path& file, int width, int height) {
-  if (std::uint64_t(width) * std::uint64_t(height) <= kMaxImageTexels) return;
+  if (width <= kMaxImageSide && height <= kMaxImageSide) return;
   throw FileError(file, "image is " + std::to_string(width) + " x " + std::to_string(height) +
                             " texels, more than the 16384 x 16384 an input image may have");
 }

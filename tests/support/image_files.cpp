@@ -9,6 +9,7 @@
 #include <ImfOutputFile.h>
 #include <ImfPartType.h>
 #include <ImfStandardAttributes.h>
+#include <ImfTiledOutputFile.h>
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
@@ -88,7 +89,7 @@ std::string png_file(int width, int height, int channels, int bit_depth,
 }
 
 void write_float_exr(const std::filesystem::path& file, int width, int height, int channels,
-                     const std::vector<float>& values) {
+                     const std::vector<float>& values, int tile) {
   const std::vector<std::string> names =
       channels == 1 ? std::vector<std::string>{"Y"} : std::vector<std::string>{"R", "G", "B"};
   Imf::Header header(width, height);
@@ -100,9 +101,16 @@ void write_float_exr(const std::filesystem::path& file, int width, int height, i
                                   sizeof(float) * names.size(),
                                   sizeof(float) * names.size() * std::size_t(width)));
   }
-  Imf::OutputFile output(file.c_str(), header);
+  if (tile == 0) {
+    Imf::OutputFile output(file.c_str(), header);
+    output.setFrameBuffer(frame);
+    output.writePixels(height);
+    return;
+  }
+  header.setTileDescription(Imf::TileDescription(tile, tile, Imf::ONE_LEVEL));
+  Imf::TiledOutputFile output(file.c_str(), header);
   output.setFrameBuffer(frame);
-  output.writePixels(height);
+  output.writeTiles(0, output.numXTiles() - 1, 0, output.numYTiles() - 1);
 }
 
 std::string exr_layout(const std::filesystem::path& file) {

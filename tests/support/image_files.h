@@ -21,9 +21,10 @@ std::string png_file(int width, int height, int channels, int bit_depth,
                      const std::vector<std::uint16_t>& samples,
                      const std::vector<PngChunk>& chunks = {});
 
-/// Writes 32-bit float channels, `channels` per pixel (1: "Y"; 3: "R", "G", "B"), as OpenEXR.
+/// Writes 32-bit float channels, `channels` per pixel (1: "Y"; 3: "R", "G", "B"), as OpenEXR:
+/// scanlines, or square tiles of `tile` pixels.
 void write_float_exr(const std::filesystem::path& file, int width, int height, int channels,
-                     const std::vector<float>& values);
+                     const std::vector<float>& values, int tile = 0);
 
 /// An OpenEXR file's channels and compression, as "B:float G:float R:float, zip".
 std::string exr_layout(const std::filesystem::path& file);

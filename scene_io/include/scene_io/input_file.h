@@ -10,12 +10,14 @@ namespace trs {
 /// Throws FileError unless `file` is a regular file that this process can open for reading.
 void check_input_file(const std::filesystem::path& file);
 
-/// The most texels an input image (a density map, a texture) may have: 16384 x 16384, 1 GiB of
-/// float densities.
-inline constexpr std::uint64_t kMaxImageTexels = std::uint64_t(1) << 28;
+/// The longest side an input image (a density map, a texture) may have: 16384 x 16384 is 1 GiB of
+/// float densities, and the largest 2D image many GPUs take. A side is bounded, not only the area,
+/// because decoders size their buffers by the row: a 1-texel-high image millions wide costs
+/// gigabytes before its first row is read.
+inline constexpr int kMaxImageSide = 16384;
 
-/// Throws FileError when an image's header claims more than kMaxImageTexels: a header can claim
-/// any size, so this runs before anything is allocated for it.
+/// Throws FileError when an image's header claims a side longer than kMaxImageSide: a header can
+/// claim any size, so this runs before anything is allocated for it.
 void check_image_size(const std::filesystem::path& file, int width, int height);
 
 }  // namespace trs
