@@ -434,6 +434,7 @@ long peak_growth_mib_of_refusal(const std::function<void()>& action) {
 
 // A header within the limit may claim more rows than the file holds: the file is refused after the
 // rows it has, before the memory its header claims (16384 x 16384 RGB floats: 3 GiB) is touched.
+// The bound, 200 MiB, leaves room for AddressSanitizer's bookkeeping (about 70 MiB in its build).
 TEST_F(ImageIoTest, HeaderClaimingMoreThanTheFileHoldsCostsOnlyWhatIsThere) {
   const fs::path pfm = write_bytes("claims.pfm", "PF\n16384 16384\n-1.0\n" + std::string(96, '\0'));
   const fs::path png = write_bytes(  // one row of 16-bit RGBA
@@ -442,7 +443,7 @@ TEST_F(ImageIoTest, HeaderClaimingMoreThanTheFileHoldsCostsOnlyWhatIsThere) {
     const long growth = peak_growth_mib_of_refusal(
         [&] { trs::load_density_map(path, trs::MapEncoding::automatic); });
     EXPECT_GE(growth, 0) << path << " was accepted";
-    EXPECT_LT(growth, 64) << path << " cost " << growth << " MiB before it was refused";
+    EXPECT_LT(growth, 200) << path << " cost " << growth << " MiB before it was refused";
   }
 }
 
