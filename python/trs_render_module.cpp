@@ -30,6 +30,7 @@
 #include "scene_io/image_output.h"
 #include "tracer/gltf_scene.h"
 #include "tracer/renderer.h"
+#include "tracer/strategy_registry.h"
 
 namespace py = pybind11;
 
@@ -306,8 +307,9 @@ PYBIND11_MODULE(trs_render, m) {
   });
 
   py::list strategies;
-  for (const tracer::StrategyName& strategy : tracer::kStrategyNames) strategies.append(strategy.name);
-  m.attr("STRATEGIES") = py::tuple(strategies);  // the names --strategy (strategy=) takes
+  for (const std::string& name : tracer::strategy_names()) strategies.append(name);
+  // The names --strategy (strategy=) takes, built in; render(plugin=...) adds a plugin's.
+  m.attr("STRATEGIES") = py::tuple(strategies);
   m.attr("RELMSE_GUARD") = trs::kRelmseGuard;  // relMSE's guard, as trs-imgdiff prints it
 
   m.def("render", &render, py::arg("scene"),

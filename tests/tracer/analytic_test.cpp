@@ -25,13 +25,13 @@ using namespace trs_test;
 
 /// Whether every strategy's estimate along the bench's ray agrees with the quadrature.
 void expect_every_strategy_agrees(const QuadOverPlane& bench, const glm::dvec3& expected,
-                                  const std::vector<StrategyKind>& kinds) {
-  for (StrategyKind kind : kinds) {
+                                  const std::vector<std::string>& kinds) {
+  for (const std::string& kind : kinds) {
     const StrategyOptions o = options(kind);
     auto s = make_light_strategy(*bench.emitters, o);
     const Estimate e = bench.run(*s, 1);
     EXPECT_TRUE(trs_test::agrees(e, expected, kSigmas, kQuadratureSlack))
-        << to_string(kind) << "\n" << trs_test::describe(e, expected);
+        << kind << "\n" << trs_test::describe(e, expected);
   }
 }
 
@@ -50,26 +50,26 @@ glm::dvec3 AnalyticQuad::expected_;
 
 TEST_F(AnalyticQuad, EveryStrategyConvergesToTheQuadrature) {
   ASSERT_GT(expected_.g, 0.0);
-  expect_every_strategy_agrees(*bench_, expected_, kEveryStrategy);
+  expect_every_strategy_agrees(*bench_, expected_, trs_test::every_strategy());
 }
 
 // `ris` over every strategy it can draw its candidates from.
 TEST_F(AnalyticQuad, RisConvergesWhereverItsCandidatesComeFrom) {
-  for (StrategyKind source : kEveryStrategy) {
+  for (const std::string& source : trs_test::every_strategy()) {
     if (!resamplable(source)) continue;
-    StrategyOptions o = options(StrategyKind::ris);
+    StrategyOptions o = options("ris");
     o.candidates_from = source;
     auto s = make_light_strategy(*bench_->emitters, o);
     const Estimate e = bench_->run(*s, 3);
     EXPECT_TRUE(trs_test::agrees(e, expected_, kSigmas, kQuadratureSlack))
-        << "ris over " << to_string(source) << "\n" << trs_test::describe(e, expected_);
+        << "ris over " << source << "\n" << trs_test::describe(e, expected_);
   }
 }
 
 // The tree with each importance and each source of the lights' power: the emitter's two
 // triangles cover different halves of its texture, so that the whole map's mean misjudges them.
 TEST_F(AnalyticQuad, TreeConvergesWithEitherImportanceAndPower) {
-  for (StrategyKind kind : {StrategyKind::tree, StrategyKind::tree_texel}) {
+  for (const std::string& kind : {"tree", "tree-texel"}) {
     for (TreeImportance importance : {TreeImportance::pbrt, TreeImportance::cycles}) {
       for (TreePower power : {TreePower::exact, TreePower::image_mean}) {
         StrategyOptions o = options(kind);
@@ -77,7 +77,7 @@ TEST_F(AnalyticQuad, TreeConvergesWithEitherImportanceAndPower) {
         auto s = make_light_strategy(*bench_->emitters, o);
         const Estimate e = bench_->run(*s, 5);
         EXPECT_TRUE(trs_test::agrees(e, expected_, kSigmas, kQuadratureSlack))
-            << to_string(kind) << ", " << to_string(importance) << ", " << to_string(power) << "\n"
+            << kind << ", " << to_string(importance) << ", " << to_string(power) << "\n"
             << trs_test::describe(e, expected_);
       }
     }
@@ -96,7 +96,7 @@ TEST(VulkanLights, TrsAndRisConvergeToTheQuadrature) {
     if (required && std::string_view(required) == "1") FAIL() << "Vulkan is unavailable: " << e.what();
     GTEST_SKIP() << "Vulkan unavailable: " << e.what();
   }
-  expect_every_strategy_agrees(*bench, bench->expected(), {StrategyKind::trs, StrategyKind::ris});
+  expect_every_strategy_agrees(*bench, bench->expected(), {"trs", "ris"});
 }
 
 // The lights drawn from parts of the emitter's triangles (lightsampler/refinement.h), brought
@@ -112,21 +112,21 @@ TEST(RefinedLightSampler, PowerTrsAndRisConvergeToTheQuadrature) {
                           [](const lightsampler::PassTime& p) { return p.pass == lightsampler::Pass::refinement; }))
       << "the emitter was not split";
   expect_every_strategy_agrees(bench, bench.expected(),
-                               {StrategyKind::power, StrategyKind::trs, StrategyKind::ris});
+                               {"power", "trs", "ris"});
 }
 
 // One light per frame, in expectation: frames with none are common (each triangle's count is
 // rounded stochastically), and only the N / N_target factor keeps the estimator unbiased.
 TEST_F(AnalyticQuad, TrsWithOneLightPerFrameIsUnbiased) {
-  auto s = strategy(*bench_->emitters, StrategyKind::trs, 1);
+  auto s = strategy(*bench_->emitters, "trs", 1);
   const Estimate e = bench_->run(*s);
   EXPECT_TRUE(trs_test::agrees(e, expected_, kSigmas, kQuadratureSlack))
       << trs_test::describe(e, expected_);
 }
 
 TEST_F(AnalyticQuad, StrategiesAgreeWithOneAnother) {
-  auto uniform = strategy(*bench_->emitters, StrategyKind::uniform);
-  auto trs = strategy(*bench_->emitters, StrategyKind::trs);
+  auto uniform = strategy(*bench_->emitters, "uniform");
+  auto trs = strategy(*bench_->emitters, "trs");
   const Estimate a = bench_->run(*uniform, 11), b = bench_->run(*trs, 12);
   for (int c = 0; c < 3; ++c) {
     const double combined = std::hypot(a.standard_error[c], b.standard_error[c]);
@@ -138,7 +138,7 @@ TEST_F(AnalyticQuad, StrategiesAgreeWithOneAnother) {
 class TrsWithoutSetSize : public LightStrategy {
  public:
   explicit TrsWithoutSetSize(Emitters& emitters)
-      : trs_(strategy(emitters, StrategyKind::trs, 1)) {}
+      : trs_(strategy(emitters, "trs", 1)) {}
   std::string name() const override { return "wrong"; }
   void begin_pass(std::uint64_t seed) override { trs_->begin_pass(seed); }
   std::optional<LightSample> sample(const LightRandom& random,
@@ -157,8 +157,8 @@ class TrsWithoutSetSize : public LightStrategy {
 
 TEST_F(AnalyticQuad, TheCheckRejectsWrongStrategies) {
   // Points drawn in proportion to power, weighed as if drawn uniformly.
-  DrawnByOneWeighedByAnother mismatched(strategy(*bench_->emitters, StrategyKind::power),
-                                        strategy(*bench_->emitters, StrategyKind::uniform));
+  DrawnByOneWeighedByAnother mismatched(strategy(*bench_->emitters, "power"),
+                                        strategy(*bench_->emitters, "uniform"));
   TrsWithoutSetSize unscaled(*bench_->emitters);
   // Used as they are, and resampled: resampling does not hide a wrong source density.
   for (unsigned candidates : {1u, kDefaultCandidates}) {

@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "estimate.h"
+#include "registered_strategies.h"
 #include "scene_builder.h"
 #include "tracer/bsdf.h"
 
@@ -66,9 +67,7 @@ TEST(Furnace, OneBounceReturnsEmissionPlusAlbedo) {
   const Ray ray{eye, glm::normalize(target - eye)};
   const Bsdf bsdf({glm::vec3(1.0f), 0.0f, kRoughness}, {0, 0, 1});
   const double expected = 1.0 + albedo(bsdf, {0, 0, 1}, -ray.direction);
-  for (StrategyKind kind :
-       {StrategyKind::uniform, StrategyKind::power, StrategyKind::trs, StrategyKind::ris, StrategyKind::tree,
-        StrategyKind::texel, StrategyKind::tree_texel}) {
+  for (const std::string& kind : trs_test::every_strategy()) {
     StrategyOptions options;
     options.kind = kind;
     options.lights = 5000;
@@ -78,7 +77,7 @@ TEST(Furnace, OneBounceReturnsEmissionPlusAlbedo) {
           scene, geometry, emitters, *strategy, ray, depth, 400, 500, 1);
       const glm::dvec3 want(depth == 0 ? 1.0 : expected);
       EXPECT_TRUE(trs_test::agrees(e, want, 4.0, 1e-3))
-          << to_string(kind) << " depth " << depth << "\n" << trs_test::describe(e, want);
+          << kind << " depth " << depth << "\n" << trs_test::describe(e, want);
     }
   }
 }

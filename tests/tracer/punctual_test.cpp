@@ -101,12 +101,12 @@ void expect_every_strategy_sums(const WithPunctual& scene, bool emitting, std::o
     if (wrong) miss += contribution(bench, light, *wrong);
   }
   ASSERT_GT(expected.g, 0.0);
-  for (StrategyKind kind : kEveryStrategy) {
+  for (const std::string& kind : trs_test::every_strategy()) {
     const StrategyOptions o = options(kind);
     auto s = make_light_strategy(*bench.emitters, o);
     const Estimate e = bench.run(*s, 11);
-    EXPECT_TRUE(agrees(e, expected, kSigmas, kQuadratureSlack)) << to_string(kind) << "\n" << describe(e, expected);
-    if (wrong) EXPECT_FALSE(agrees(e, miss, kSigmas, kQuadratureSlack)) << to_string(kind) << " accepts a wrong falloff";
+    EXPECT_TRUE(agrees(e, expected, kSigmas, kQuadratureSlack)) << kind << "\n" << describe(e, expected);
+    if (wrong) EXPECT_FALSE(agrees(e, miss, kSigmas, kQuadratureSlack)) << kind << " accepts a wrong falloff";
   }
 }
 

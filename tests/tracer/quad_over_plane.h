@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "estimate.h"
+#include "registered_strategies.h"
 #include "scene_builder.h"
 #include "tracer/bsdf.h"
 
@@ -112,22 +113,18 @@ struct QuadOverPlane {
   }
 };
 
-inline StrategyOptions options(StrategyKind kind, double lights = 2000) {
+inline StrategyOptions options(const std::string& kind, double lights = 2000) {
   StrategyOptions o;
   o.kind = kind;
   o.lights = lights;
   return o;
 }
 
-inline std::unique_ptr<LightStrategy> strategy(Emitters& emitters, StrategyKind kind,
+inline std::unique_ptr<LightStrategy> strategy(Emitters& emitters, const std::string& kind,
                                         double lights = 2000) {
   return make_light_strategy(emitters, options(kind, lights));
 }
 
-inline const std::vector<StrategyKind> kEveryStrategy = {StrategyKind::uniform, StrategyKind::power,
-                                                  StrategyKind::trs,     StrategyKind::ris,
-                                                  StrategyKind::tree,    StrategyKind::texel,
-                                                  StrategyKind::tree_texel};
 
 /// Another strategy's draws, each connection resampled from `candidates` of them (as `ris` does),
 /// for strategies the tests make.

@@ -108,9 +108,9 @@ bool as_good_as(const Estimate& candidate, const Estimate& tree) {
 TEST(TreeVariance, IgnoringOrientationIsUnbiasedButNoisier) {
   const LightsFacingBothWays bench;
   StrategyOptions options;
-  options.kind = StrategyKind::power;
+  options.kind = "power";
   const Estimate power = bench.run(*make_light_strategy(*bench.emitters, options), 1);
-  options.kind = StrategyKind::tree;
+  options.kind = "tree";
   const Estimate tree = bench.run(*make_light_strategy(*bench.emitters, options), 2);
   const Estimate again = bench.run(*make_light_strategy(*bench.emitters, options), 3);
   const auto blind_strategy = make_chosen_light_strategy(

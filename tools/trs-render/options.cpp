@@ -16,7 +16,9 @@
 #include "common/build_commit.h"
 #include "common/cli_options.h"
 #include "scene_io/frame_pattern.h"
+#include "scene_io/file_error.h"
 #include "shell_words.h"
+#include "tracer/strategy_registry.h"
 
 namespace trs {
 namespace {
@@ -27,42 +29,62 @@ const std::map<std::string, tracer::TreeImportance> kTreeImportances = {
 const std::map<std::string, tracer::TreePower> kTreePowers = {
     {"exact", tracer::TreePower::exact}, {"image-mean", tracer::TreePower::image_mean}};
 
-/// The names of the strategies `keep` accepts, in alphabetical order, as the help lists the
-/// other choices (names()).
-template <class Keep>
-std::vector<std::string> strategy_names(Keep keep) {
-  std::vector<std::string> result;
-  for (const auto& [kind, name] : tracer::kStrategyNames)
-    if (keep(kind)) result.push_back(name);
-  std::sort(result.begin(), result.end());
-  return result;
-}
+constexpr const char* kAutoSummary = "ris where the emission varies within the lights, else power";
 
-/// What --strategy's help says of a strategy; a switch, so that the compiler names a strategy
-/// added without one.
-const char* strategy_summary(tracer::StrategyKind kind) {
-  switch (kind) {
-    case tracer::StrategyKind::uniform: return "triangles by area";
-    case tracer::StrategyKind::power: return "triangles by emitted power";
-    case tracer::StrategyKind::trs: return "point lights drawn every frame by Triangle Rejection Sampling";
-    case tracer::StrategyKind::ris: return "another strategy's points resampled per shading point";
-    case tracer::StrategyKind::tree: return "a light tree that weighs the lights for each shading point";
-    case tracer::StrategyKind::texel: return "texel pieces of the lights by their emission";
-    case tracer::StrategyKind::tree_texel: return "the light tree's triangle, then a texel piece of it";
-    case tracer::StrategyKind::automatic: return "ris where the emission varies within the lights, else power";
-  }
-  return "";
-}
-
-/// --strategy's help: every strategy of kStrategyNames, in its order.
+/// --strategy's help: every registered strategy (plugins loaded), then auto.
 std::string strategy_help() {
   std::string help = "light sampling for next-event estimation:";
-  const char* separator = " ";
-  for (const auto& [kind, name] : tracer::kStrategyNames) {
-    help += separator + std::string(name) + " (" + strategy_summary(kind) + ")";
-    separator = ", ";
+  for (const tracer::StrategyDefinition* s : tracer::registered_strategies())
+    help += " " + s->name + " (" + s->summary + "),";
+  return help + " auto (" + kAutoSummary + ")";
+}
+
+/// The names of the strategies ris can draw from, in the order of their names.
+std::vector<std::string> resamplable_names() {
+  std::vector<std::string> names;
+  for (const tracer::StrategyDefinition* s : tracer::registered_strategies())
+    if (!s->resamples) names.push_back(s->name);
+  return names;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& n : names) text += (text.empty() ? "" : ", ") + n;
+  return text;
+}
+
+/// Why --strategy-option's names are not all options of the strategy that draws; none if they are.
+std::optional<std::string> undeclared_parameter(const tracer::StrategyOptions& options) {
+  const tracer::StrategyDefinition* source = tracer::find_strategy(tracer::source_kind(options));
+  for (const auto& [name, value] : options.parameters) {
+    std::vector<std::string> declared;
+    if (source)
+      for (const tracer::StrategyParameter& p : source->parameters) declared.push_back(p.name);
+    if (std::find(declared.begin(), declared.end(), name) == declared.end())
+      return "--strategy-option " + name + ": strategy " + tracer::source_kind(options) + " has " +
+             (declared.empty() ? std::string("no options") : "the options " + joined(declared)) + ", not " + name;
   }
+  return std::nullopt;
+}
+
+/// --strategy-option's help: the options of the strategies that have any.
+std::string parameter_help() {
+  std::string help = "NAME=VALUE: an option of a plugin's strategy, which reads it by name; repeatable";
+  for (const tracer::StrategyDefinition* s : tracer::registered_strategies())
+    for (const tracer::StrategyParameter& p : s->parameters) help += "; " + s->name + ": " + p.name + " (" + p.help + ")";
   return help;
+}
+
+/// The values of --plugin on a command line, so that their strategies are registered before the
+/// options (and their help) are made; the settings file's are loaded once it is read.
+std::vector<std::string> plugins_named(int argc, char** argv) {
+  std::vector<std::string> plugins;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--plugin" && i + 1 < argc) plugins.emplace_back(argv[++i]);
+    else if (a.starts_with("--plugin=")) plugins.push_back(a.substr(9));
+  }
+  return plugins;
 }
 
 /// The settings file as CLI11 reads TOML, but a key without a value (`height = []`) is refused:
@@ -143,11 +165,26 @@ struct BudgetOptions {
 struct LightOptions {
   std::string strategy = "auto", candidates_from = "trs", tree_importance = "pbrt", tree_power = "exact",
               lights = "auto";
+  std::vector<std::string> plugins, parameters;
 
   void add(CLI::App& app, RenderOptions& options) {
-    app.add_option("--strategy", strategy, strategy_help())
-        ->check(CLI::IsMember(strategy_names([](tracer::StrategyKind) { return true; })))
-        ->capture_default_str();
+    app.add_option("--strategy", strategy, strategy_help())->capture_default_str();
+    app.add_option("--plugin", plugins,
+                   "load the light strategies of a shared library built against the installed tracer "
+                   "(examples/light_strategy); repeatable")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_option("--strategy-option", parameters, parameter_help())
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    app.add_flag_callback(
+        "--list-strategies",
+        [] {
+          for (const tracer::StrategyDefinition* s : tracer::registered_strategies())
+            std::cout << s->name << "\t" << s->summary << "\n";
+          std::cout << tracer::kAutoStrategy << "\t" << kAutoSummary << "\n";
+          throw CLI::Success();
+        },
+        "print the strategies --strategy takes (with the plugins' given before it), a name and a tab "
+        "before each summary, and exit");
     app.add_option("--lights", lights,
                    "trs, ris: expected point lights drawn per frame (1e6 notation accepted; 64 bytes "
                    "each); auto: a quarter of the frame's next-event queries, width x height x max "
@@ -160,7 +197,6 @@ struct LightOptions {
         ->capture_default_str();
     app.add_option("--candidates-from", candidates_from,
                    "ris: the strategy its candidates come from")
-        ->check(CLI::IsMember(strategy_names(tracer::resamplable)))
         ->capture_default_str();
     app.add_option("--tree-importance", tree_importance,
                    "tree, tree-texel: how a node's importance for a shading point is estimated: pbrt (pbrt-v4's), "
@@ -181,9 +217,25 @@ struct LightOptions {
 
   UsageError finish(const CLI::App& app, RenderOptions& options) const {
     tracer::RenderSettings& r = options.render;
-    r.strategy.kind = tracer::parse_strategy(strategy).value();
-    r.strategy.candidates_from = tracer::parse_strategy(candidates_from).value();
-    const bool resamples = r.strategy.kind == tracer::StrategyKind::ris || r.strategy.kind == tracer::StrategyKind::automatic;
+    try {
+      for (const std::string& plugin : plugins) tracer::load_strategy_plugin(plugin);
+    } catch (const FileError& error) {
+      return error.what();
+    }
+    const std::vector<std::string> names = tracer::strategy_names(), sources = resamplable_names();
+    if (std::find(names.begin(), names.end(), strategy) == names.end())
+      return "--strategy: " + strategy + " not in {" + joined(names) + "}";
+    if (std::find(sources.begin(), sources.end(), candidates_from) == sources.end())
+      return "--candidates-from: " + candidates_from + " not in {" + joined(sources) + "}";
+    r.strategy.kind = strategy;
+    r.strategy.candidates_from = candidates_from;
+    for (const std::string& p : parameters) {
+      const std::size_t equals = p.find('=');
+      if (equals == 0 || equals == std::string::npos) return "--strategy-option takes NAME=VALUE (" + p + ")";
+      r.strategy.parameters[p.substr(0, equals)] = p.substr(equals + 1);
+    }
+    if (UsageError error = undeclared_parameter(r.strategy)) return error;
+    const bool resamples = strategy == "ris" || strategy == tracer::kAutoStrategy;
     if (UsageError error = misplaced(app, {"--candidates", "--candidates-from"}, resamples,
                                      "belongs to --strategy ris (and auto, where it chooses ris)"))
       return error;
@@ -389,6 +441,8 @@ std::optional<NoRender> run_parser(CLI::App& app, int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     std::cout << e.what() << "\n";
     return NoRender{};
+  } catch (const CLI::Success&) {
+    return NoRender{};
   } catch (const CLI::ConfigError& e) {
     // CLI11 names the key, not the file it came from.
     return NoRender{app.get_option("--settings")->as<std::string>() + ": " + e.what() +
@@ -400,6 +454,11 @@ std::optional<NoRender> run_parser(CLI::App& app, int argc, char** argv) {
 }
 
 std::variant<RenderOptions, NoRender> parse(int argc, char** argv, bool out_required) {
+  try {
+    for (const std::string& plugin : plugins_named(argc, argv)) tracer::load_strategy_plugin(plugin);
+  } catch (const FileError& error) {
+    return NoRender{error.what()};
+  }
   CLI::App app(
       "Renders a glTF 2.0 scene lit by its emissive textures with a path tracer whose next-event "
       "estimation samples lights uniformly by area, by triangle power, by a light tree that weighs "

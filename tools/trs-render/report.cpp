@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/relmse.h"
+#include "tracer/strategy_registry.h"
 #include "lightsampler/backend.h"
 
 namespace trs {
@@ -87,9 +88,9 @@ std::vector<std::pair<const char*, double>> setup_parts(const tracer::RenderResu
 
 /// What `auto` chose and why; null for a strategy named.
 nlohmann::json strategy_choice_json(const tracer::StrategyOptions& asked, const tracer::StrategyChoice& choice) {
-  if (asked.kind != tracer::StrategyKind::automatic) return nullptr;
-  return {{"asked", tracer::to_string(asked.kind)},
-          {"used", tracer::to_string(choice.options.kind)},
+  if (asked.kind != tracer::kAutoStrategy) return nullptr;
+  return {{"asked", asked.kind},
+          {"used", choice.options.kind},
           {"texel_gain", choice.texel_gain},
           {"reason", choice.reason}};
 }
@@ -170,7 +171,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
   // The options that rendered: auto's choice, or the options as given.
   const tracer::StrategyOptions& used = result.strategy_choice.options;
   const bool tree = tracer::picks_by_tree(used);
-  const bool ris = used.kind == tracer::StrategyKind::ris;
+  const bool ris = used.kind == "ris";
   return {
       {"settings",
        {{"scene", options.scene.string()},
@@ -186,7 +187,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"strategy", result.strategy},
         {"lights", r.strategy.lights},
         {"candidates", ris ? nlohmann::json(used.candidates) : nlohmann::json()},
-        {"candidates_from", ris ? nlohmann::json(tracer::to_string(used.candidates_from)) : nlohmann::json()},
+        {"candidates_from", ris ? nlohmann::json(used.candidates_from) : nlohmann::json()},
         {"tree_importance", tree ? nlohmann::json(tracer::to_string(used.tree.importance)) : nlohmann::json()},
         {"tree_power", tree ? nlohmann::json(tracer::to_string(used.tree.power)) : nlohmann::json()},
         {"punctual", options.punctual},

@@ -2,51 +2,57 @@
 
 #include <stdexcept>
 
-#include "resampling.h"
 #include "strategies/strategies.h"
+#include "tracer/strategy_registry.h"
 
 namespace tracer {
 
 namespace {
 
-std::unique_ptr<LightStrategy> make_source(Emitters& emitters, StrategyKind kind,
-                                           const StrategyOptions& options) {
-  switch (kind) {
-    case StrategyKind::uniform:
-    case StrategyKind::power:
-    case StrategyKind::tree:
-    case StrategyKind::tree_texel: return make_chosen_light_strategy(emitters, kind, options.tree);
-    case StrategyKind::trs: return make_trs_strategy(emitters, options);
-    case StrategyKind::texel: return make_texel_strategy(emitters);
-    case StrategyKind::ris:
-    case StrategyKind::automatic: break;
+const StrategyDefinition& definition(const std::string& name) {
+  const StrategyDefinition* found = find_strategy(name);
+  if (!found) {
+    std::string known;
+    for (const std::string& n : strategy_names()) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("no light strategy named " + name + " (there are " + known + ")");
   }
-  throw std::invalid_argument(std::string("no light strategy made as ") + to_string(kind));
-}
-
-/// The strategy `kind` over the emissive triangles and the punctual lights: the tree holds them
-/// among its leaves; the others take them beside their draws, by power, as every strategy does
-/// where no triangle emits.
-std::unique_ptr<LightStrategy> make_lights(Emitters& emitters, StrategyKind kind,
-                                           const StrategyOptions& options) {
-  const bool tree = kind == StrategyKind::tree || kind == StrategyKind::tree_texel;
-  if (emitters.punctual().count() == 0 || (tree && emitters.count() > 0)) return make_source(emitters, kind, options);
-  return with_punctual_lights(emitters, emitters.count() > 0 ? make_source(emitters, kind, options) : nullptr,
-                              to_string(kind));
+  return *found;
 }
 
 }  // namespace
 
-bool resamplable(StrategyKind kind) { return kind != StrategyKind::ris && kind != StrategyKind::automatic; }
+const std::string& source_kind(const StrategyOptions& options) {
+  return options.kind == "ris" ? options.candidates_from : options.kind;
+}
+
+bool picks_by_tree(const StrategyOptions& options) {
+  const StrategyDefinition* source = find_strategy(source_kind(options));
+  return source && source->picks_by_tree;
+}
+
+bool draws_point_lights(const StrategyOptions& options) {
+  const StrategyDefinition* source = find_strategy(source_kind(options));
+  return source && source->draws_point_lights;
+}
+
+bool resamplable(const std::string& name) {
+  const StrategyDefinition* s = find_strategy(name);
+  return s && !s->resamples;
+}
+
+std::unique_ptr<LightStrategy> make_strategy_over_every_light(Emitters& emitters, const std::string& name,
+                                                              const StrategyOptions& options) {
+  const StrategyDefinition& d = definition(name);
+  const StrategyContext context{emitters, options};
+  if (emitters.punctual().count() == 0 || (d.draws_punctual_lights && emitters.count() > 0) || d.resamples)
+    return d.make(context);
+  return with_punctual_lights(emitters, emitters.count() > 0 ? d.make(context) : nullptr, d.name);
+}
 
 std::unique_ptr<LightStrategy> make_light_strategy(Emitters& emitters, const StrategyOptions& options) {
   if (emitters.count() == 0 && emitters.punctual().count() == 0)
     throw std::invalid_argument("the scene has no lights: no emissive triangle and no punctual light");
-  if (options.kind != StrategyKind::ris) return make_lights(emitters, options.kind, options);
-  if (!resamplable(options.candidates_from))
-    throw std::invalid_argument(std::string("ris cannot draw its candidates from ") +
-                                to_string(options.candidates_from));
-  return make_resampled(make_lights(emitters, options.candidates_from, options), options.candidates);
+  return make_strategy_over_every_light(emitters, options.kind, options);
 }
 
 LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,
@@ -54,18 +60,6 @@ LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1,
   const glm::vec3 radiance = emitters.emission(light, b1, b2) * emitters.opacity(light, b1, b2);
   return {emitters.position(light, b1, b2), pdf, emitters.normal(light), mis_pdf, radiance, light,
           b1, b2, emitters.two_sided(light)};
-}
-
-const char* to_string(StrategyKind kind) {
-  for (const StrategyName& s : kStrategyNames)
-    if (s.kind == kind) return s.name;
-  return "?";
-}
-
-std::optional<StrategyKind> parse_strategy(const std::string& name) {
-  for (const StrategyName& s : kStrategyNames)
-    if (name == s.name) return s.kind;
-  return std::nullopt;
 }
 
 const char* to_string(TreeImportance importance) {

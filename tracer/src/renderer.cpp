@@ -17,6 +17,7 @@
 #include "tracer/emitters.h"
 #include "tracer/geometry.h"
 #include "tracer/path_tracer.h"
+#include "tracer/strategy_registry.h"
 
 namespace tracer {
 namespace {
@@ -79,7 +80,7 @@ lightsampler::SamplerOptions sampler_options(const RenderSettings& settings) {
   // The subdivision speeds up drawing lights; the other strategies only read integrals and texels.
   // `auto` measures on the sampler `ris` draws from, where the texture decides, and renders with
   // it: built once, subdivided, rather than once for the measure and again for `ris`.
-  if (!draws_point_lights(settings.strategy) && settings.strategy.kind != StrategyKind::automatic)
+  if (!draws_point_lights(settings.strategy) && settings.strategy.kind != kAutoStrategy)
     options.refinement = {};
   // The cost model splits for the lights a pass draws.
   if (options.refinement.cost_model) options.refinement.frame_samples = settings.strategy.lights;

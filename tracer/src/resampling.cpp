@@ -2,6 +2,9 @@
 
 #include <stdexcept>
 
+#include "strategies/strategies.h"
+#include "tracer/strategy_registry.h"
+
 namespace tracer {
 namespace {
 
@@ -12,7 +15,7 @@ class ResampledStrategy : public LightStrategy {
       : source_(std::move(source)), candidates_(candidates) {
     if (candidates_ == 0) throw std::invalid_argument("ris needs a candidate");
   }
-  std::string name() const override { return to_string(StrategyKind::ris); }
+  std::string name() const override { return "ris"; }
   unsigned candidates() const override { return candidates_; }
   void begin_pass(std::uint64_t seed) override { source_->begin_pass(seed); }
   void emission_changed() override { source_->emission_changed(); }
@@ -31,6 +34,17 @@ class ResampledStrategy : public LightStrategy {
   std::unique_ptr<LightStrategy> source_;
   unsigned candidates_;
 };
+
+TRS_REGISTER_STRATEGY({.name = "ris",
+                       .summary = "another strategy's points resampled per shading point",
+                       .make = [](const StrategyContext& c) -> std::unique_ptr<LightStrategy> {
+                         const std::string& source = c.options.candidates_from;
+                         if (!resamplable(source))
+                           throw std::invalid_argument("ris cannot draw its candidates from " + source);
+                         return make_resampled(make_strategy_over_every_light(c.emitters, source, c.options),
+                                               c.options.candidates);
+                       },
+                       .resamples = true});
 
 }  // namespace
 

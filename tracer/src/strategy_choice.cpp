@@ -16,6 +16,7 @@
 #include <stdexcept>
 
 #include "tracer/light_strategy.h"
+#include "tracer/strategy_registry.h"
 
 namespace tracer {
 namespace {
@@ -47,14 +48,14 @@ double texel_gain(Emitters& emitters) {
 }  // namespace
 
 StrategyChoice choose_strategy(Emitters& emitters, const StrategyOptions& options) {
-  if (options.kind != StrategyKind::automatic) return {options, 0.0, {}};
+  if (options.kind != kAutoStrategy) return {options, 0.0, {}};
   StrategyChoice choice{options, texel_gain(emitters), {}};
   const bool texture_decides = choice.texel_gain >= kAutoTexelGain;
-  choice.options.kind = texture_decides ? StrategyKind::ris : StrategyKind::power;
+  choice.options.kind = texture_decides ? "ris" : "power";
   char reason[160];
   if (texture_decides)
     std::snprintf(reason, sizeof reason, "the emission varies within the lights (texel gain %.2f >= %.2f): ris over %s",
-                  choice.texel_gain, kAutoTexelGain, to_string(options.candidates_from));
+                  choice.texel_gain, kAutoTexelGain, options.candidates_from.c_str());
   else
     std::snprintf(reason, sizeof reason, "the emission is nearly flat on each light (texel gain %.2f < %.2f): power",
                   choice.texel_gain, kAutoTexelGain);

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -131,11 +132,6 @@ class LightStrategy {
 /// ris: candidates per shading point when none is given (docs/noise.md, "Resampled lights").
 inline constexpr unsigned kDefaultCandidates = 4;
 
-/// `ris` resamples the points of another strategy per shading point (PathTracer): by default
-/// the point lights of `trs`. `automatic` (`auto`) is one of the others, chosen for the scene
-/// (choose_strategy).
-enum class StrategyKind { uniform, power, trs, ris, tree, texel, tree_texel, automatic };
-
 /// tree: how a node's importance for a shading point is estimated (tree_importance.h).
 enum class TreeImportance { pbrt, cycles };
 /// tree: the power each light is weighed with.
@@ -150,30 +146,30 @@ struct TreeOptions {
 };
 
 struct StrategyOptions {
-  StrategyKind kind = StrategyKind::automatic;  ///< ris or power, as the scene's emission calls for (docs/noise.md)
+  /// A registered strategy's name (strategy_registry.h), or `auto`: ris or power, as the scene's
+  /// emission calls for (docs/noise.md).
+  std::string kind = "auto";
   double lights = 1e6;          ///< trs (and ris over it): expected point lights per pass (N_target)
   unsigned candidates = kDefaultCandidates;  ///< ris: points resampled per shading point
-  StrategyKind candidates_from = StrategyKind::trs;  ///< ris: the strategy its candidates come from
+  std::string candidates_from = "trs";  ///< ris: the strategy its candidates come from
   TreeOptions tree;  ///< tree (and ris over it)
+  /// A plugin's own options, by name (trs-render --strategy-option NAME=VALUE); the built-in
+  /// strategies read none.
+  std::map<std::string, std::string> parameters;
 };
 
 /// The strategy that draws the points: the one named, or for `ris` the one its candidates come from.
-inline StrategyKind source_kind(const StrategyOptions& options) {
-  return options.kind == StrategyKind::ris ? options.candidates_from : options.kind;
-}
+const std::string& source_kind(const StrategyOptions& options);
 
 /// Whether the strategy picks lights with the light tree (and reads StrategyOptions::tree).
-inline bool picks_by_tree(const StrategyOptions& options) {
-  return source_kind(options) == StrategyKind::tree || source_kind(options) == StrategyKind::tree_texel;
-}
+bool picks_by_tree(const StrategyOptions& options);
 
 /// Whether the strategy draws a set of point lights every pass (`auto` only once it chose one).
-inline bool draws_point_lights(const StrategyOptions& options) {
-  return source_kind(options) == StrategyKind::trs;
-}
+bool draws_point_lights(const StrategyOptions& options);
 
-/// The strategies `ris` can draw its candidates from: any but itself.
-bool resamplable(StrategyKind kind);
+/// Whether `ris` can draw its candidates from the strategy `name`: a registered one that does not
+/// resample itself.
+bool resamplable(const std::string& name);
 
 /// `auto` takes `ris` over `trs` where the emission varies within the lights by at least this
 /// texel gain (StrategyChoice), and `power` below it (docs/noise.md, "The default").
@@ -196,32 +192,11 @@ struct StrategyChoice {
 /// seed: every seed of a scene renders with the same strategy.
 StrategyChoice choose_strategy(Emitters& emitters, const StrategyOptions& options);
 
-/// Throws std::invalid_argument when the scene has no lights or `options` names `auto` (choose first).
+/// The strategy `options` names, made by its registered definition. Throws std::invalid_argument
+/// when the scene has no lights or `options` names no registered strategy (`auto`: choose first).
 /// `emitters` must outlive the strategy; `trs` draws its point lights with their sampler.
 std::unique_ptr<LightStrategy> make_light_strategy(Emitters& emitters, const StrategyOptions& options);
 
-/// A strategy and its name, as the command line, the stats and Python spell it.
-struct StrategyName {
-  StrategyKind kind;
-  const char* name;
-};
-
-/// Every strategy by name, in the order trs-render's help and trs_render.STRATEGIES list them.
-inline constexpr std::array<StrategyName, 8> kStrategyNames = {{
-    {StrategyKind::uniform, "uniform"},
-    {StrategyKind::power, "power"},
-    {StrategyKind::trs, "trs"},
-    {StrategyKind::ris, "ris"},
-    {StrategyKind::tree, "tree"},
-    {StrategyKind::texel, "texel"},
-    {StrategyKind::tree_texel, "tree-texel"},
-    {StrategyKind::automatic, "auto"},
-}};
-
-/// The name kStrategyNames gives `kind`.
-const char* to_string(StrategyKind kind);
-/// The strategy kStrategyNames calls `name`; none for a name it lacks.
-std::optional<StrategyKind> parse_strategy(const std::string& name);
 const char* to_string(TreeImportance importance);
 const char* to_string(TreePower power);
 

@@ -15,6 +15,7 @@
 #include "strategies/strategies.h"
 #include "strategies/tree_importance.h"
 #include "strategies/triangle_point.h"
+#include "tracer/strategy_registry.h"
 
 namespace tracer {
 namespace {
@@ -69,23 +70,42 @@ std::unique_ptr<LightStrategy> make_chosen_light_strategy(const Emitters& emitte
   return std::make_unique<ChosenLight>(emitters, std::move(choice), std::move(point), std::move(name));
 }
 
-std::unique_ptr<LightStrategy> make_chosen_light_strategy(const Emitters& emitters, StrategyKind kind,
-                                                          const TreeOptions& tree) {
-  const auto tree_choice = [&] {
-    return make_tree_choice(emitters, tree.power, make_node_importance(tree.importance, emitters));
-  };
-  switch (kind) {
-    case StrategyKind::uniform:
-      return make_chosen_light_strategy(emitters, make_area_choice(emitters), make_area_point(emitters), to_string(kind));
-    case StrategyKind::power:
-      return make_chosen_light_strategy(emitters, make_power_choice(emitters), make_area_point(emitters), to_string(kind));
-    case StrategyKind::tree:
-      return make_chosen_light_strategy(emitters, tree_choice(), make_solid_angle_point(emitters), to_string(kind));
-    case StrategyKind::tree_texel:
-      return make_chosen_light_strategy(emitters, tree_choice(), make_texel_point(emitters), to_string(kind));
-    default:
-      throw std::invalid_argument(std::string(to_string(kind)) + " does not choose a light and then a point on it");
-  }
+namespace {
+
+std::unique_ptr<LightChoice> tree_choice(const StrategyContext& c) {
+  const TreeOptions& tree = c.options.tree;
+  return make_tree_choice(c.emitters, tree.power, make_node_importance(tree.importance, c.emitters));
 }
+
+TRS_REGISTER_STRATEGY({.name = "uniform",
+                       .summary = "triangles by area",
+                       .make = [](const StrategyContext& c) {
+                         return make_chosen_light_strategy(c.emitters, make_area_choice(c.emitters),
+                                                           make_area_point(c.emitters), "uniform");
+                       }});
+TRS_REGISTER_STRATEGY({.name = "power",
+                       .summary = "triangles by emitted power",
+                       .make = [](const StrategyContext& c) {
+                         return make_chosen_light_strategy(c.emitters, make_power_choice(c.emitters),
+                                                           make_area_point(c.emitters), "power");
+                       }});
+TRS_REGISTER_STRATEGY({.name = "tree",
+                       .summary = "a light tree that weighs the lights for each shading point",
+                       .make = [](const StrategyContext& c) {
+                         return make_chosen_light_strategy(c.emitters, tree_choice(c),
+                                                           make_solid_angle_point(c.emitters), "tree");
+                       },
+                       .picks_by_tree = true,
+                       .draws_punctual_lights = true});
+TRS_REGISTER_STRATEGY({.name = "tree-texel",
+                       .summary = "the light tree's triangle, then a texel piece of it",
+                       .make = [](const StrategyContext& c) {
+                         return make_chosen_light_strategy(c.emitters, tree_choice(c),
+                                                           make_texel_point(c.emitters), "tree-texel");
+                       },
+                       .picks_by_tree = true,
+                       .draws_punctual_lights = true});
+
+}  // namespace
 
 }  // namespace tracer

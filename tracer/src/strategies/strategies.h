@@ -14,13 +14,11 @@ class TrianglePoint;
 /// A light chosen by `choice`, then a point on a chosen triangle by `point` (chosen_light.cpp).
 std::unique_ptr<LightStrategy> make_chosen_light_strategy(const Emitters& emitters, std::unique_ptr<LightChoice> choice,
                                                           std::unique_ptr<TrianglePoint> point, std::string name);
-/// `uniform`, `power`, `tree` or `tree-texel`: the choice and the point `kind` pairs.
-std::unique_ptr<LightStrategy> make_chosen_light_strategy(const Emitters& emitters, StrategyKind kind,
-                                                          const TreeOptions& tree);
-
-/// The joint draws over every emitter: `trs`'s per-frame point set and `texel`'s alias table.
-std::unique_ptr<LightStrategy> make_trs_strategy(Emitters& emitters, const StrategyOptions& options);
-std::unique_ptr<LightStrategy> make_texel_strategy(const Emitters& emitters);
+/// The registered strategy `name` over the emissive triangles and the punctual lights: one that
+/// draws punctual lights itself (the tree) holds them among its choices; the punctual lights are
+/// drawn beside the others' points, by power, as every strategy does where no triangle emits.
+std::unique_ptr<LightStrategy> make_strategy_over_every_light(Emitters& emitters, const std::string& name,
+                                                              const StrategyOptions& options);
 
 /// `area`'s draws over the emissive triangles (none where no triangle emits) and the scene's
 /// punctual lights beside them, chosen by power (punctual.cpp); named `name`.

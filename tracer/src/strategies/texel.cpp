@@ -13,6 +13,7 @@
 #include "strategies/piece_table.h"
 #include "strategies/strategies.h"
 #include "strategies/unit_interval.h"
+#include "tracer/strategy_registry.h"
 
 namespace tracer {
 namespace {
@@ -21,7 +22,7 @@ class TexelStrategy : public LightStrategy {
  public:
   explicit TexelStrategy(const Emitters& emitters) : emitters_(emitters) { build(); }
 
-  std::string name() const override { return to_string(StrategyKind::texel); }
+  std::string name() const override { return "texel"; }
   void emission_changed() override { build(); }
 
   std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint&) const override {
@@ -64,10 +65,10 @@ class TexelStrategy : public LightStrategy {
   double build_ms_ = 0.0;
 };
 
-}  // namespace
+TRS_REGISTER_STRATEGY({.name = "texel",
+                       .summary = "texel pieces of the lights by their emission",
+                       .make = [](const StrategyContext& c) { return std::make_unique<TexelStrategy>(c.emitters); }});
 
-std::unique_ptr<LightStrategy> make_texel_strategy(const Emitters& emitters) {
-  return std::make_unique<TexelStrategy>(emitters);
-}
+}  // namespace
 
 }  // namespace tracer

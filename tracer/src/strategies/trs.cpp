@@ -26,6 +26,7 @@
 #include <lightsampler/random.h>
 
 #include "strategies/strategies.h"
+#include "tracer/strategy_registry.h"
 
 namespace tracer {
 namespace {
@@ -61,7 +62,7 @@ class TrsStrategy : public LightStrategy {
       throw std::invalid_argument("trs takes 1 to 2^32 - 1 lights per pass");
   }
 
-  std::string name() const override { return to_string(StrategyKind::trs); }
+  std::string name() const override { return "trs"; }
 
   void begin_pass(std::uint64_t seed) override {
     lightsampler::FrameRequest request;
@@ -141,11 +142,11 @@ class TrsStrategy : public LightStrategy {
   double records_ms_ = 0.0;
 };
 
-}  // namespace
+TRS_REGISTER_STRATEGY({.name = "trs",
+                       .summary = "point lights drawn every frame by Triangle Rejection Sampling",
+                       .make = [](const StrategyContext& c) { return std::make_unique<TrsStrategy>(c.emitters, c.options); },
+                       .draws_point_lights = true});
 
-std::unique_ptr<LightStrategy> make_trs_strategy(Emitters& emitters,
-                                                 const StrategyOptions& options) {
-  return std::make_unique<TrsStrategy>(emitters, options);
-}
+}  // namespace
 
 }  // namespace tracer
