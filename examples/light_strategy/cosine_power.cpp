@@ -42,20 +42,24 @@ class CosinePower : public tracer::LightStrategy {
     // A uniform point on the triangle: b1 weighs its second corner, b2 its third.
     const float r = std::sqrt(uniform(random[2])), s = uniform(random[3]);
     const float b1 = r * (1.0f - s), b2 = r * s;
-    const float density = pdf(light, b1, b2, at);
+    const float density = this->density(light, cumulative);
     if (!(density > 0.0f)) return std::nullopt;
     return tracer::light_point(emitters_, light, b1, b2, density, density);
   }
 
   float pdf(std::uint32_t light, float, float, const tracer::ShadingPoint& from) const override {
-    const std::vector<double> cumulative = cumulative_weights(from);
+    return density(light, cumulative_weights(from));
+  }
+
+ private:
+  /// The area density of a point of `light`, from the lights' weights summed in light order.
+  float density(std::uint32_t light, const std::vector<double>& cumulative) const {
     const double total = cumulative.back();
     if (!(total > 0.0)) return 0.0f;
     const double weight = cumulative[light] - (light > 0 ? cumulative[light - 1] : 0.0);
     return float(weight / total / double(emitters_.area(light)));
   }
 
- private:
   static float uniform(std::uint32_t word) { return float(word >> 8) * 0x1p-24f; }
 
   /// The lights' weights seen from `at`, summed in light order.

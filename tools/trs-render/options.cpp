@@ -43,7 +43,7 @@ std::string strategy_help() {
 std::vector<std::string> resamplable_names() {
   std::vector<std::string> names;
   for (const tracer::StrategyDefinition* s : tracer::registered_strategies())
-    if (!s->resamples) names.push_back(s->name);
+    if (tracer::resamplable(s->name)) names.push_back(s->name);
   return names;
 }
 
@@ -56,10 +56,10 @@ std::string joined(const std::vector<std::string>& names) {
 /// Why --strategy-option's names are not all options of the strategy that draws; none if they are.
 std::optional<std::string> undeclared_parameter(const tracer::StrategyOptions& options) {
   const tracer::StrategyDefinition* source = tracer::find_strategy(tracer::source_kind(options));
+  std::vector<std::string> declared;
+  if (source)
+    for (const tracer::StrategyParameter& p : source->parameters) declared.push_back(p.name);
   for (const auto& [name, value] : options.parameters) {
-    std::vector<std::string> declared;
-    if (source)
-      for (const tracer::StrategyParameter& p : source->parameters) declared.push_back(p.name);
     if (std::find(declared.begin(), declared.end(), name) == declared.end())
       return "--strategy-option " + name + ": strategy " + tracer::source_kind(options) + " has " +
              (declared.empty() ? std::string("no options") : "the options " + joined(declared)) + ", not " + name;
