@@ -109,25 +109,18 @@ py::array buffer_view(const py::object& owner, const ls::Buffer<T>& buffer) {
   return view(owner, buffer.data(), buffer.size());
 }
 
-/// The enumerator whose library name (lightsampler::to_string) is `name`.
-template <class E>
-E choice(const std::string& name, std::initializer_list<E> values, const char* what) {
+/// The value `table` (lightsampler/enum_names.h) names `name`.
+template <class Table>
+ls::NamedEnum<Table> choice(const Table& table, const std::string& name, const char* what) {
+  if (const auto value = ls::value_of(table, name)) return *value;
   std::string known;
-  for (const E value : values) {
-    if (name == ls::to_string(value)) return value;
-    known += std::string(known.empty() ? "" : ", ") + ls::to_string(value);
-  }
+  for (const auto& entry : table) known += std::string(known.empty() ? "" : ", ") + entry.name;
   throw py::value_error(std::string(what) + ": unknown value '" + name + "' (one of " + known + ")");
 }
 
-ls::Addressing addressing(const std::string& name) {
-  if (const std::optional<ls::Addressing> a = ls::parse_addressing(name)) return *a;
-  throw py::value_error("addressing: unknown value '" + name + "' (one of wrap, clamp, mirror)");
-}
+ls::Addressing addressing(const std::string& name) { return choice(ls::kAddressingNames, name, "addressing"); }
 
-ls::Backend backend(const std::string& name) {
-  return choice(name, {ls::Backend::automatic, ls::Backend::cpu, ls::Backend::vulkan}, "backend");
-}
+ls::Backend backend(const std::string& name) { return choice(ls::kBackendNames, name, "backend"); }
 
 /// refine: "auto" (the tools' default: the cost model for frames of `frame_samples` samples, the
 /// acceptance rules below kAutoMinAcceptance without them), an acceptance in [0, 1], or 0 / None /
@@ -205,13 +198,13 @@ class PySampler {
     ls::FrameRequest request;
     request.seed = seed;
     request.target_count = target_count;
-    request.method = choice(method, {ls::Method::trs, ls::Method::rejection, ls::Method::naive, ls::Method::frs}, "method");
-    request.scan = choice(scan, {ls::ScanOrder::automatic, ls::ScanOrder::unordered, ls::ScanOrder::ordered, ls::ScanOrder::lookback}, "scan");
-    request.overlap = choice(overlap, {ls::Overlap::closed_form, ls::Overlap::clipping, ls::Overlap::sdf}, "overlap");
+    request.method = choice(ls::kMethodNames, method, "method");
+    request.scan = choice(ls::kScanOrderNames, scan, "scan");
+    request.overlap = choice(ls::kOverlapNames, overlap, "overlap");
     request.realize = realize;
     request.max_tries = max_tries;
     request.exact_after = exact_after;
-    request.vulkan = {choice(counting, {ls::Counting::automatic, ls::Counting::raster, ls::Counting::compute, ls::Counting::per_triangle}, "counting"),
+    request.vulkan = {choice(ls::kRequestableCountings, counting, "counting"),
                       read_back, subgroup_reduction, inverse_cdf};
     PyFrame result{FramePool::take(pool_), mesh_};
     {

@@ -85,7 +85,7 @@ void warn(const trs::RunNote& note) {
   PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 1);
 }
 
-/// Ctrl-C in Python while a render runs without the GIL: checked after each frame; the run then
+/// Ctrl-C in Python while a render runs without the GIL: checked after each pass; the run then
 /// stops as trs-render does on SIGINT, and KeyboardInterrupt is raised once it has saved.
 class InterruptCheck {
  public:
@@ -183,7 +183,7 @@ const char* const kDisplayOptions[] = {"ocio_config", "ocio_colorspace", "displa
 const char* const kRunOptions[] = {"out", "stats", "preview", "variance", "emitter_mask", "frames",
                                    "resume", "save_partial", "plan", "chunk", "time", "exposure"};
 
-/// A renderer driven frame by frame, for notebooks that show the image converge.
+/// A renderer driven a pass at a time, for notebooks that show the image converge.
 class PyRenderer {
  public:
   PyRenderer(const py::object& scene, std::int64_t frame, const py::kwargs& kwargs)
@@ -228,11 +228,11 @@ class PyRenderer {
     for (const auto& names : {std::span<const char* const>(kRunOptions), std::span<const char* const>(kDisplayOptions)})
       for (const char* name : names)
         if (kwargs.contains(name))
-          throw py::value_error(std::string(name) + " belongs to trs_render.render(); a Renderer renders frame by frame");
+          throw py::value_error(std::string(name) + " belongs to trs_render.render(); a Renderer renders a pass at a time");
     return kwargs;
   }
 
-  /// Before the first frame: black, as an image of no samples is.
+  /// Before the first pass: black, as an image of no samples is.
   py::array_t<float> copy(const std::vector<float>& values, py::ssize_t channels) const {
     const auto h = py::ssize_t(options_.render.height), w = py::ssize_t(options_.render.width);
     std::vector<float> data = values.empty() ? std::vector<float>(std::size_t(h * w * channels), 0.0f) : values;
@@ -330,24 +330,29 @@ PYBIND11_MODULE(trs_render, m) {
         "(scaled by 2^exposure, the display transform, 8 bits); options: ocio_config, ocio_colorspace, "
         "display, view, as trs-render's.");
 
-  py::class_<PyRenderer>(m, "Renderer", "A scene and settings, rendered a frame (one sample per pixel) at a time.")
+  py::class_<PyRenderer>(m, "Renderer", "A scene and settings, rendered a pass (one sample per pixel) at a time.")
       .def(py::init<const py::object&, std::int64_t, const py::kwargs&>(), py::arg("scene"), py::kw_only(),
            py::arg("frame") = 0,
            "Renderer(scene, frame=0, **options): trs-render's options, less those of a run (out, stats, "
            "preview, variance, emitter_mask, frames, resume, save_partial, plan, chunk, time, exposure, "
            "ocio_config, ocio_colorspace, display, view).")
-      .def("render_frame", [](PyRenderer& r) { return r.render_passes(1); },
-           "Renders one frame more; returns the mean image so far, float32 (height, width, 3).")
+      .def("render_pass", [](PyRenderer& r) { return r.render_passes(1); },
+           "Renders one pass more; returns the mean image so far, float32 (height, width, 3).")
+      .def("render_passes", &PyRenderer::render_passes, py::arg("count") = py::none(),
+           "Renders `count` passes more (spp by default); returns the mean image so far.")
+      // The names of earlier versions, kept for scripts written against them.
+      .def("render_frame", [](PyRenderer& r) { return r.render_passes(1); }, "render_pass(), by its earlier name.")
       .def("render_frames", &PyRenderer::render_passes, py::arg("count") = py::none(),
-           "Renders `count` frames more (spp by default); returns the mean image so far.")
+           "render_passes(count), by its earlier name.")
       .def("set_frame", &PyRenderer::set_frame, py::arg("frame"),
-           "Moves to animation frame `frame`; the next frames start its image afresh.")
+           "Moves to animation frame `frame`; the next passes start its image afresh.")
       .def_property_readonly("image", &PyRenderer::image, "the mean image so far, float32 (height, width, 3)")
       .def_property_readonly("variance", &PyRenderer::variance,
                              "float32 (height, width): per-sample luminance variance of each pixel")
       .def_property_readonly("emitter_fraction", &PyRenderer::emitter_fraction,
                              "float32 (height, width): fraction of camera samples whose first hit is an emitter")
-      .def_property_readonly("frames", &PyRenderer::passes, "passes (samples per pixel) so far")
+      .def_property_readonly("passes", &PyRenderer::passes, "passes (samples per pixel) so far")
+      .def_property_readonly("frames", &PyRenderer::passes, "`passes`, by its earlier name")
       .def_property_readonly("frame", &PyRenderer::frame, "the animation frame")
-      .def("stats", &PyRenderer::stats, "the stats JSON of the frames so far, as a dict");
+      .def("stats", &PyRenderer::stats, "the stats JSON of the passes so far, as a dict");
 }

@@ -25,7 +25,7 @@ import tempfile
 from pathlib import Path
 
 PARTS = ["loading", "texture_decoding", "bvh", "emission", "light_sampler", "subdivision", "light_structure",
-         "first_frame"]
+         "first_pass"]
 
 
 def config_options(config):
@@ -57,10 +57,10 @@ def measure(render, scene, settings, config, args, work):
         sys.exit(f"setup_cost: {shlex.join(command)} failed:\n{result.stderr}")
     s = json.loads(stats.read_text())
     row = {f"{part}_ms": s["setup_ms"][part] for part in PARTS}
-    row["setup_ms"] = sum(s["setup_ms"][part] for part in PARTS if part != "first_frame")
+    row["setup_ms"] = sum(s["setup_ms"][part] for part in PARTS if part != "first_pass")
     row["parts"] = s["light_sampler_parts"]
     row["frame_ms"] = 1000.0 * s["render_seconds"] / max(s["frames"], 1)
-    row["sampler_ms"] = s["sampler_ms_per_frame"]
+    row["sampler_ms"] = s["sampler_ms_per_pass"]
     row["used"] = (s["strategy_choice"] or {}).get("used", s["settings"]["strategy"])
     return row
 

@@ -115,12 +115,12 @@ def test_a_task_cancelled_while_it_renders_keeps_its_passes_and_is_rendered_agai
     assert not (out / "f.0000.exr").exists()
     assert np.isfinite(pixels(out / "f.0000.partial.exr")).all()
     stats = json.loads((out / "f.0000.partial.json").read_text())
-    assert stats["interrupted"] is True and stats["frames"] >= 1, stats
+    assert stats["interrupted"] is True and stats["passes"] >= 1, stats
 
     status, again, err = submit(out / "f.%04d.exr", "0:0", *stats_pattern, "--wait")
     assert status == 0, err
     stats = json.loads((out / "f.0000.json").read_text())
-    assert stats["interrupted"] is False and stats["frames"] == 2, stats
+    assert stats["interrupted"] is False and stats["passes"] == 2, stats
     assert sorted(p.name for p in out.glob("f.*")) == ["f.0000.exr", "f.0000.json"]
 
 

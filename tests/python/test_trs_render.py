@@ -45,7 +45,7 @@ def test_render_equals_the_command_line_bit_for_bit(tmp_path, trs_render_exe, sc
     image, stats = trs_render.render(scene(scenes), strategy=strategy, **TINY)
     assert image.shape == (18, 32, 3) and image.dtype == np.float32
     assert np.array_equal(image.view(np.uint32), read_exr(tmp_path / "cli.exr").view(np.uint32))
-    assert stats["frames"] == 3 and stats["settings"]["strategy"] == strategy
+    assert stats["passes"] == 3 and stats["settings"]["strategy"] == strategy
 
 
 def test_another_seed_gives_another_image(scenes):
@@ -55,17 +55,34 @@ def test_another_seed_gives_another_image(scenes):
     assert not np.array_equal(a, b)
 
 
-def test_frame_by_frame_equals_one_render(scenes):
+def test_pass_by_pass_equals_one_render(scenes):
     options = {k: v for k, v in TINY.items() if k != "spp"}
     renderer = trs_render.Renderer(scene(scenes), **options)
-    assert renderer.frames == 0 and not renderer.image.any()
+    assert renderer.passes == 0 and not renderer.image.any()
     for _ in range(3):
-        image = renderer.render_frame()
-    assert renderer.frames == 3
+        image = renderer.render_pass()
+    assert renderer.passes == 3
     whole, stats = trs_render.render(scene(scenes), **TINY)
     assert np.array_equal(image.view(np.uint32), whole.view(np.uint32))
     assert renderer.variance.shape == renderer.emitter_fraction.shape == (18, 32)
-    assert renderer.stats()["frames"] == 3 and set(renderer.stats()) >= set(stats) - {"frame_seconds"}
+    assert renderer.stats()["passes"] == 3 and set(renderer.stats()) >= set(stats) - {"frame_seconds"}
+
+
+def test_the_earlier_names_of_a_pass_still_answer(scenes):
+    """Scripts written when a pass was called a frame keep working, with the same values."""
+    options = {k: v for k, v in TINY.items() if k != "spp"}
+    renderer = trs_render.Renderer(scene(scenes), **options)
+    renderer.render_frame()
+    image = renderer.render_frames(2)
+    assert renderer.frames == renderer.passes == 3
+    whole, _ = trs_render.render(scene(scenes), **TINY)
+    assert np.array_equal(image.view(np.uint32), whole.view(np.uint32))
+    stats = renderer.stats()
+    for earlier, key in [("frames", "passes"), ("sampler_ms_per_frame", "sampler_ms_per_pass"),
+                         ("light_records_ms_per_frame", "light_records_ms_per_pass"),
+                         ("lights_per_frame", "lights_per_pass"), ("sampler_passes_ms", "sampler_stages_ms")]:
+        assert stats[earlier] == stats[key], earlier
+    assert stats["setup_ms"]["first_frame"] == stats["setup_ms"]["first_pass"]
 
 
 def test_stats_are_the_stats_json(tmp_path, trs_render_exe, scenes):
@@ -79,7 +96,7 @@ def test_outputs_are_written_as_the_command_line_writes_them(tmp_path, scenes):
                                  stats=tmp_path / "a.json", **TINY)
     assert np.array_equal(read_exr(tmp_path / "a.exr"), image)
     assert (tmp_path / "a.png").read_bytes()[:4] == b"\x89PNG"
-    assert json.loads((tmp_path / "a.json").read_text())["frames"] == 3
+    assert json.loads((tmp_path / "a.json").read_text())["passes"] == 3
 
 
 def test_preview_is_the_png_the_command_line_writes(tmp_path, scenes):

@@ -141,8 +141,8 @@ TEST_F(RenderCliTest, RendersEveryStrategy) {
     }
 
     const nlohmann::json stats = read_json(json);
-    for (const char* key : {"settings", "frames", "interrupted", "wall_seconds", "paths_per_second",
-                            "rays_per_second", "sampler_ms_per_frame", "relative_variance"}) {
+    for (const char* key : {"settings", "passes", "interrupted", "wall_seconds", "paths_per_second",
+                            "rays_per_second", "sampler_ms_per_pass", "relative_variance"}) {
       EXPECT_TRUE(stats.contains(key)) << key;
     }
     const nlohmann::json& settings = stats["settings"];
@@ -157,20 +157,20 @@ TEST_F(RenderCliTest, RendersEveryStrategy) {
     EXPECT_EQ(settings["backend"], "cpu");
     EXPECT_FLOAT_EQ(settings["refine"].get<float>(), lightsampler::kAutoMinAcceptance);
     EXPECT_EQ(settings["refine_rule"], "cost");
-    EXPECT_EQ(stats["frames"], 2);
+    EXPECT_EQ(stats["passes"], 2);
     EXPECT_EQ(stats["interrupted"], false);
     EXPECT_GT(stats["wall_seconds"].get<double>(), 0.0);
     EXPECT_GT(stats["paths_per_second"].get<double>(), 0.0);
     EXPECT_GT(stats["rays_per_second"].get<double>(), 0.0);
     const double relative_variance = stats["relative_variance"].get<double>();
     EXPECT_TRUE(std::isfinite(relative_variance) && relative_variance >= 0.0) << relative_variance;
-    const double sampler_ms = stats["sampler_ms_per_frame"].get<double>();
+    const double sampler_ms = stats["sampler_ms_per_pass"].get<double>();
     const bool point_lights = strategy == "trs" || strategy == "ris";
     if (point_lights)
       EXPECT_GT(sampler_ms, 0.0);
     else
       EXPECT_GE(sampler_ms, 0.0);
-    EXPECT_EQ(stats["light_records_ms_per_frame"].get<double>() > 0.0, point_lights);
+    EXPECT_EQ(stats["light_records_ms_per_pass"].get<double>() > 0.0, point_lights);
     if (strategy == "ris") {
       EXPECT_EQ(settings["candidates"], 4);
       EXPECT_EQ(settings["candidates_from"], "trs");
@@ -230,7 +230,7 @@ TEST_F(RenderCliTest, TimeBudgetRendersUntilItIsSpent) {
   EXPECT_GE(seconds, 2.0);
   read_render(exr, 32, 18);
   const nlohmann::json stats = read_json(json);
-  EXPECT_GT(stats["frames"].get<unsigned>(), 2u);
+  EXPECT_GT(stats["passes"].get<unsigned>(), 2u);
   EXPECT_EQ(stats["interrupted"], false);
   // The bound is on the tool's own clock, which leaves out loading its libraries and exiting:
   // those take longer under the sanitizers and on a loaded machine, whatever the budget.
@@ -244,7 +244,7 @@ TEST_F(RenderCliTest, TimeBudgetRendersUntilItIsSpent) {
   const auto capped_start = std::chrono::steady_clock::now();
   ASSERT_EQ(run(capped).status, 0);
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - capped_start).count(), 30.0);
-  EXPECT_EQ(read_json(json)["frames"], 3);
+  EXPECT_EQ(read_json(json)["passes"], 3);
   EXPECT_EQ(read_json(json)["settings"]["spp"], 3);
 }
 
@@ -285,7 +285,7 @@ TEST_F(RenderCliTest, SettingsFileAndCommandLine) {
   nlohmann::json stats = read_json(file("file.json"));
   EXPECT_EQ(stats["settings"]["width"], 8);
   EXPECT_EQ(stats["settings"]["spp"], 3);
-  EXPECT_EQ(stats["frames"], 3);
+  EXPECT_EQ(stats["passes"], 3);
 
   std::vector<std::string> overridden = base;
   overridden.insert(overridden.end(), {"--width", "16", "--out", file("cli.exr").string(),
@@ -391,7 +391,7 @@ TEST_F(RenderCliTest, SetUpByPartAndTheStrategyAutoChose) {
     EXPECT_FALSE(choice["reason"].get<std::string>().empty());
     double parts = 0.0;
     for (const char* part : {"loading", "texture_decoding", "bvh", "emission", "light_sampler", "subdivision",
-                             "light_structure", "first_frame"}) {
+                             "light_structure", "first_pass"}) {
       ASSERT_TRUE(stats["setup_ms"].contains(part)) << part;
       EXPECT_GE(stats["setup_ms"][part].get<double>(), 0.0) << part;
       parts += stats["setup_ms"][part].get<double>();
@@ -1095,7 +1095,7 @@ TEST_P(RenderCliSignalTest, SavesThePassesDone) {
   EXPECT_TRUE(any_positive(*image));
   const nlohmann::json stats = read_json(json);
   EXPECT_EQ(stats["interrupted"], true);
-  const auto frames = stats["frames"].get<unsigned>();
+  const auto frames = stats["passes"].get<unsigned>();
   EXPECT_GE(frames, 1u);
   EXPECT_LE(frames, 99999u);
   EXPECT_EQ(stats["settings"]["spp"], 100000);
@@ -1131,14 +1131,14 @@ TEST_F(RenderCliStopTest, ASequenceKeepsTheFrameUnderWayOnlyWithSavePartial) {
   const nlohmann::json stats = read_json(file("f.0000.partial.json"));
   EXPECT_EQ(stats["interrupted"], true);
   EXPECT_EQ(stats["frame"], 0);
-  EXPECT_GE(stats["frames"].get<unsigned>(), 1u);
+  EXPECT_GE(stats["passes"].get<unsigned>(), 1u);
 
   const RunResult resumed = run(sequence("2", "--resume"));
   ASSERT_EQ(resumed.status, 0) << resumed.err;
   EXPECT_EQ(listing(), (std::set<std::string>{"f.0000.exr", "f.0000.json", "f.0000.png", "f.0001.exr", "f.0001.json",
                                               "f.0001.png"}));
   EXPECT_EQ(read_json(file("f.0000.json"))["interrupted"], false);
-  EXPECT_EQ(read_json(file("f.0000.json"))["frames"], 2);
+  EXPECT_EQ(read_json(file("f.0000.json"))["passes"], 2);
 }
 
 }  // namespace

@@ -4,7 +4,6 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
-#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -14,35 +13,19 @@
 
 namespace trs {
 
-/// The names of a choice map, for CLI::IsMember.
-template <class T>
-std::vector<std::string> names(const std::map<std::string, T>& choices) {
+/// The names a table of EnumName lists (lightsampler/enum_names.h), for CLI::IsMember.
+template <class Table>
+std::vector<std::string> names(const Table& table) {
   std::vector<std::string> result;
-  for (const auto& [name, value] : choices) result.push_back(name);
+  for (const auto& entry : table) result.push_back(entry.name);
   return result;
 }
 
-inline const std::map<std::string, lightsampler::Backend> kBackends = {
-    {"cpu", lightsampler::Backend::cpu},
-    {"auto", lightsampler::Backend::automatic},
-    {"vulkan", lightsampler::Backend::vulkan}};
-
-inline const std::map<std::string, lightsampler::Method> kMethods = {
-    {"trs", lightsampler::Method::trs},
-    {"rs", lightsampler::Method::rejection},
-    {"naive", lightsampler::Method::naive},
-    {"frs", lightsampler::Method::frs}};
-
-inline const std::map<std::string, lightsampler::Overlap> kOverlaps = {
-    {"closed-form", lightsampler::Overlap::closed_form},
-    {"clipping", lightsampler::Overlap::clipping},
-    {"sdf", lightsampler::Overlap::sdf}};
-
-inline const std::map<std::string, lightsampler::Counting> kCountings = {
-    {"auto", lightsampler::Counting::automatic},
-    {"raster", lightsampler::Counting::raster},
-    {"compute", lightsampler::Counting::compute},
-    {"per-triangle", lightsampler::Counting::per_triangle}};
+/// The value of a name that CLI::IsMember checked against names(table).
+template <class Table>
+lightsampler::NamedEnum<Table> named(const Table& table, const std::string& name) {
+  return lightsampler::value_of(table, name).value();
+}
 
 /// Finite and non-negative; NaN fails every comparison, so it is rejected too.
 inline const CLI::Validator kFiniteNonNegative(

@@ -29,7 +29,7 @@ import json, statistics, sys
 out = sys.argv[1]
 for strategy in ("uniform", "ris"):
     stats = [json.load(open(f"{out}/{strategy}/frame.{f:04d}.json")) for f in range(48)]
-    spp = statistics.mean(s["frames"] for s in stats)
+    spp = statistics.mean(s["passes"] for s in stats)
     ready = statistics.mean(sum(s["emission_update_ms"].values()) for s in stats[1:])
     print(f"{strategy:8s} {spp:6.1f} spp a frame on average; getting ready for each new frame's emission: {ready:.1f} ms")
 PY

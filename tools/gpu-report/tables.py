@@ -386,9 +386,9 @@ def section_render(work):
             stats = read_json(d / f"{scene}.{backend}.json")
             if not stats:
                 continue
-            frame = 1000 * stats["render_seconds"] / max(stats["frames"], 1)
-            rows.append((scene, backend, stats.get("light_sampler", ""), f"{stats['lights_per_frame']:.3g}",
-                         ms(stats["sampler_ms_median"]), ms(stats["light_records_ms_per_frame"]), ms(frame),
+            frame = 1000 * stats["render_seconds"] / max(stats["passes"], 1)
+            rows.append((scene, backend, stats.get("light_sampler", ""), f"{stats['lights_per_pass']:.3g}",
+                         ms(stats["sampler_ms_median"]), ms(stats["light_records_ms_per_pass"]), ms(frame),
                          relmse(read_json(d / f"{scene}.{backend}.full-reference.json")),
                          relmse(read_json(d / f"{scene}.{backend}.small-reference.json")),
                          verdict(read_json(d / f"{scene}.{backend}.small-reference.json")),

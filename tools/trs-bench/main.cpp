@@ -110,13 +110,13 @@ std::vector<Variant> make_variants(const CommandLine& cl) {
     const bool vulkan = backend_name == "vulkan";
     const auto backend = vulkan ? lightsampler::Backend::vulkan : lightsampler::Backend::cpu;
     for (const auto& method_name : cl.methods) {
-      const auto method = trs::kMethods.at(method_name);
+      const auto method = trs::named(lightsampler::kMethodNames, method_name);
       if (!vulkan || method != lightsampler::Method::trs) {
         variants.push_back({.backend = backend, .method = method, .counting = lightsampler::Counting::automatic});
         continue;
       }
       for (const auto& counting : cl.countings)
-        variants.push_back({.backend = backend, .method = method, .counting = trs::kCountings.at(counting)});
+        variants.push_back({.backend = backend, .method = method, .counting = trs::named(lightsampler::kRequestableCountings, counting)});
     }
   }
   return variants;
@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
                  "Methods: trs (Triangle Rejection Sampling), rs (plain rejection sampling), "
                  "naive (naive triangle stratification), frs (fast rejection sampling)")
       ->delimiter(',')
-      ->check(CLI::IsMember(trs::names(trs::kMethods)))
+      ->check(CLI::IsMember(trs::names(lightsampler::kMethodNames)))
       ->capture_default_str();
   app.add_option("--backends", cl.backends, "Backends: cpu, vulkan (side by side)")
       ->delimiter(',')
@@ -195,7 +195,7 @@ int main(int argc, char** argv) {
                  "Counting paths of the Vulkan backend: auto (per-triangle for small triangles, "
                  "compute for large ones), raster, compute, per-triangle (the paper's naive ablation)")
       ->delimiter(',')
-      ->check(CLI::IsMember(trs::names(trs::kCountings)))
+      ->check(CLI::IsMember(trs::names(lightsampler::kRequestableCountings)))
       ->capture_default_str();
   trs::add_refine_option(app, cl.settings.refinement);
   app.add_option("--device", cl.settings.vulkan_device,

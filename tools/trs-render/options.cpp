@@ -7,7 +7,6 @@
 #include <initializer_list>
 #include <iostream>
 #include <limits>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,12 +21,6 @@
 
 namespace trs {
 namespace {
-
-const std::map<std::string, tracer::TreeImportance> kTreeImportances = {
-    {"pbrt", tracer::TreeImportance::pbrt}, {"cycles", tracer::TreeImportance::cycles}};
-
-const std::map<std::string, tracer::TreePower> kTreePowers = {
-    {"exact", tracer::TreePower::exact}, {"image-mean", tracer::TreePower::image_mean}};
 
 constexpr const char* kAutoSummary = "ris where the emission varies within the lights, else power";
 
@@ -139,11 +132,11 @@ struct BudgetOptions {
   double time = 0.0;
 
   void add(CLI::App& app, tracer::RenderSettings& r) {
-    app.add_option("--spp", r.spp, "samples per pixel: frames of one path per pixel")
+    app.add_option("--spp", r.spp, "samples per pixel: passes of one path per pixel")
         ->capture_default_str();
     app.add_option("--time", time,
-                   "render frames until SECONDS of wall time have passed since the start, set-up "
-                   "included (at least one frame); an explicit --spp then caps the frames")
+                   "render passes until SECONDS of wall time have passed since the start, set-up "
+                   "included (at least one pass); an explicit --spp then caps the passes")
         ->check(CLI::PositiveNumber & kFiniteNonNegative);
   }
 
@@ -201,12 +194,12 @@ struct LightOptions {
     app.add_option("--tree-importance", tree_importance,
                    "tree, tree-texel: how a node's importance for a shading point is estimated: pbrt (pbrt-v4's), "
                    "or cycles (Cycles' lower and upper bounds, averaged)")
-        ->check(CLI::IsMember(names(kTreeImportances)))
+        ->check(CLI::IsMember(names(tracer::kTreeImportanceNames)))
         ->capture_default_str();
     app.add_option("--tree-power", tree_power,
                    "tree, tree-texel: each light's power: exact (its texels' integral), or image-mean (its area "
                    "times the mean of its whole emission map, as pbrt-v4 takes it)")
-        ->check(CLI::IsMember(names(kTreePowers)))
+        ->check(CLI::IsMember(names(tracer::kTreePowerNames)))
         ->capture_default_str();
     app.add_flag("!--no-punctual", options.punctual,
                  "leave out the scene's punctual lights (KHR_lights_punctual): its emission alone");
@@ -239,7 +232,7 @@ struct LightOptions {
     if (UsageError error = misplaced(app, {"--candidates", "--candidates-from"}, resamples,
                                      "belongs to --strategy ris (and auto, where it chooses ris)"))
       return error;
-    r.strategy.tree = {kTreeImportances.at(tree_importance), kTreePowers.at(tree_power)};
+    r.strategy.tree = {named(tracer::kTreeImportanceNames, tree_importance), named(tracer::kTreePowerNames, tree_power)};
     if (UsageError error = misplaced(app, {"--tree-importance", "--tree-power"}, tracer::picks_by_tree(r.strategy),
                                      "belongs to --strategy tree and tree-texel (or ris over them)"))
       return error;
@@ -277,7 +270,7 @@ struct LightSamplerOptions {
     app.add_option("--backend", backend,
                    "light sampler (the point lights of trs and ris, every strategy's light "
                    "integrals); auto: Vulkan on a GPU, else the native CPU backend")
-        ->check(CLI::IsMember(names(kBackends)))
+        ->check(CLI::IsMember(names(lightsampler::kBackendNames)))
         ->capture_default_str();
     // Refined by the cost model by default: the same lights for less of the sampler's work, and
     // no split its frames cannot pay for (docs/benchmarks.md).
@@ -287,7 +280,7 @@ struct LightSamplerOptions {
                    "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE)");
   }
 
-  void finish(lightsampler::SamplerOptions& sampler) const { sampler.backend = kBackends.at(backend); }
+  void finish(lightsampler::SamplerOptions& sampler) const { sampler.backend = named(lightsampler::kBackendNames, backend); }
 };
 
 /// --frames and --fps, and how a sequence runs: --resume, --save-partial, --plan, --submit, --chunk.

@@ -83,7 +83,7 @@ std::vector<std::pair<const char*, double>> setup_parts(const tracer::RenderResu
           {"light_sampler", t.light_sampler_ms},
           {"subdivision", t.subdivision_ms},
           {"light_structure", t.light_structure_ms},
-          {"first_frame", 1000.0 * result.first_pass_seconds}};
+          {"first_pass", 1000.0 * result.first_pass_seconds}};
 }
 
 /// What `auto` chose and why; null for a strategy named.
@@ -157,17 +157,15 @@ std::string host_name() {
   return gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string("unknown");
 }
 
-}  // namespace
-
-nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResult& result,
-                          double wall_seconds, const std::optional<SequenceFrame>& frame,
-                          const std::optional<DisplayEncoder>& preview) {
+nlohmann::json current_stats_json(const RenderOptions& options, const tracer::RenderResult& result,
+                                  double wall_seconds, const std::optional<SequenceFrame>& frame,
+                                  const std::optional<DisplayEncoder>& preview) {
   const tracer::RenderSettings& r = options.render;
   const SamplerTimes sampler = sampler_times(result);
   nlohmann::json ms = nlohmann::json::array();
   for (const tracer::LightPass& f : result.light_passes) ms.push_back(f.sampler_ms);
-  nlohmann::json passes = nlohmann::json::object();
-  for (const lightsampler::PassTime& p : sampler.passes) passes[lightsampler::to_string(p.pass)] = p.ms;
+  nlohmann::json stages = nlohmann::json::object();
+  for (const lightsampler::PassTime& p : sampler.passes) stages[lightsampler::to_string(p.pass)] = p.ms;
   // The options that rendered: auto's choice, or the options as given.
   const tracer::StrategyOptions& used = result.strategy_choice.options;
   const bool tree = tracer::picks_by_tree(used);
@@ -181,7 +179,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"fps", r.fps},
         {"width", r.width},
         {"height", r.height},
-        // The most frames (null: none, a time budget alone) and the time budget (null: none).
+        // The most passes (null: none, a time budget alone) and the time budget (null: none).
         {"spp", options.time_seconds && r.spp == std::numeric_limits<unsigned>::max() ? nlohmann::json() : nlohmann::json(r.spp)},
         {"time", options.time_seconds ? nlohmann::json(*options.time_seconds) : nlohmann::json()},
         {"strategy", result.strategy},
@@ -202,7 +200,7 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
         {"ocio_colorspace", display_setting(preview, &DisplayTransform::colorspace)},
         {"display", display_setting(preview, &DisplayTransform::display)},
         {"view", display_setting(preview, &DisplayTransform::view)}}},
-      {"frames", result.passes},
+      {"passes", result.passes},
       {"strategy_choice", strategy_choice_json(r.strategy, result.strategy_choice)},
       {"interrupted", result.interrupted},
       {"frame", frame ? nlohmann::json(frame->frame) : nlohmann::json()},
@@ -221,17 +219,41 @@ nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResu
       {"rays", result.rays},
       {"paths_per_second", per_second(double(result.paths), result.render_seconds)},
       {"rays_per_second", per_second(double(result.rays), result.render_seconds)},
-      {"sampler_ms_per_frame", sampler.mean_ms},
+      {"sampler_ms_per_pass", sampler.mean_ms},
       {"sampler_ms_median", sampler.median_ms},
       {"sampler_ms", ms},
-      {"sampler_passes_ms", passes},
-      {"light_records_ms_per_frame", sampler.records_ms},
-      {"lights_per_frame", sampler.mean_lights},
+      {"sampler_stages_ms", stages},
+      {"light_records_ms_per_pass", sampler.records_ms},
+      {"lights_per_pass", sampler.mean_lights},
       {"acceptance_rate", sampler.acceptance},
       {"exhausted_lights", sampler.exhausted},
       {"invalid_paths", result.invalid_paths},
       {"relative_variance", relative_variance(result)},
   };
+}
+
+/// Keys by which earlier versions, counting passes as "frames", wrote what is now a pass's: written
+/// beside the new ones (the same values) for the scripts that read them.
+constexpr std::pair<const char*, const char*> kEarlierKeys[] = {
+    {"frames", "passes"},
+    {"sampler_ms_per_frame", "sampler_ms_per_pass"},
+    {"light_records_ms_per_frame", "light_records_ms_per_pass"},
+    {"lights_per_frame", "lights_per_pass"},
+    {"sampler_passes_ms", "sampler_stages_ms"},
+};
+
+nlohmann::json with_earlier_keys(nlohmann::json stats) {
+  for (const auto& [earlier, key] : kEarlierKeys) stats[earlier] = stats[key];
+  stats["setup_ms"]["first_frame"] = stats["setup_ms"]["first_pass"];
+  return stats;
+}
+
+}  // namespace
+
+nlohmann::json stats_json(const RenderOptions& options, const tracer::RenderResult& result,
+                          double wall_seconds, const std::optional<SequenceFrame>& frame,
+                          const std::optional<DisplayEncoder>& preview) {
+  return with_earlier_keys(current_stats_json(options, result, wall_seconds, frame, preview));
 }
 
 void print_frame(std::ostream& out, const std::filesystem::path& image, const tracer::RenderResult& result,
@@ -275,12 +297,12 @@ void print_summary(std::ostream& out, const std::filesystem::path& image, const 
   }
   if (!result.light_device.empty()) {
     std::snprintf(line, sizeof line,
-                  "  light sampler (%s): %.3g lights and %.2f ms per frame (median %.2f ms)\n",
+                  "  light sampler (%s): %.3g lights and %.2f ms per pass (median %.2f ms)\n",
                   result.light_device.c_str(), sampler.mean_lights, sampler.mean_ms,
                   sampler.median_ms);
     out << line;
     if (!sampler.passes.empty()) {
-      out << "    per pass:";
+      out << "    per stage:";
       for (std::size_t i = 0; i < sampler.passes.size(); ++i) {
         std::snprintf(line, sizeof line, "%s %s %.2f ms", i ? "," : "",
                       lightsampler::to_string(sampler.passes[i].pass), sampler.passes[i].ms);
@@ -289,7 +311,7 @@ void print_summary(std::ostream& out, const std::filesystem::path& image, const 
       std::snprintf(line, sizeof line, "; %.3g of the candidates accepted\n", sampler.acceptance);
       out << line;
     }
-    std::snprintf(line, sizeof line, "    light records: %.2f ms per frame\n", sampler.records_ms);
+    std::snprintf(line, sizeof line, "    light records: %.2f ms per pass\n", sampler.records_ms);
     out << line;
   }
   std::snprintf(line, sizeof line,

@@ -84,7 +84,7 @@ int render_still(const RenderOptions& options, std::chrono::steady_clock::time_p
   const tracer::RenderResult result = renderer.render(
       [&](unsigned done, unsigned total) {
         bar.update(done, total);
-        if (hooks.on_frame) hooks.on_frame();
+        if (hooks.on_pass) hooks.on_pass();
       },
       hooks.cancel);
   bar.finish();
@@ -189,7 +189,7 @@ int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
     const tracer::RenderResult result = renderer->render(
         [&](unsigned done, unsigned) {
           bar.update(done_before + done, unsigned(todo.size()) * spp);
-          if (hooks.on_frame) hooks.on_frame();
+          if (hooks.on_pass) hooks.on_pass();
         },
         hooks.cancel);
     bar.finish();

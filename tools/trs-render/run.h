@@ -51,8 +51,8 @@ struct RunHooks {
   /// Each image once it is done and written: its animation frame (0 for a still), the result
   /// and the stats JSON that --stats writes.
   std::function<void(std::int64_t, const tracer::RenderResult&, const nlohmann::json&)> on_image = {};
-  /// After every frame (sample per pixel) rendered.
-  std::function<void()> on_frame = {};
+  /// After every pass (sample per pixel) rendered.
+  std::function<void()> on_pass = {};
 };
 
 /// The preview's display transform that `options` ask for, a warning about it to `note`. Throws

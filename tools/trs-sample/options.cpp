@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <iostream>
-#include <map>
 #include <string>
 
 #include "common/cli_options.h"
@@ -11,13 +10,8 @@
 namespace trs {
 namespace {
 
-const std::map<std::string, lightsampler::ScanOrder> kScans = {
-    {"auto", lightsampler::ScanOrder::automatic},
-    {"unordered", lightsampler::ScanOrder::unordered},
-    {"ordered", lightsampler::ScanOrder::ordered},
-    {"lookback", lightsampler::ScanOrder::lookback}};
-const std::map<std::string, MapEncoding> kEncodings = {
-    {"auto", MapEncoding::automatic}, {"srgb", MapEncoding::srgb}, {"linear", MapEncoding::linear}};
+constexpr lightsampler::EnumName<MapEncoding> kEncodings[] = {
+    {MapEncoding::automatic, "auto"}, {MapEncoding::srgb, "srgb"}, {MapEncoding::linear, "linear"}};
 
 }  // namespace
 
@@ -50,13 +44,13 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
   app.add_option("--method", method,
                  "Triangle Rejection Sampling, plain rejection sampling, naive triangle "
                  "stratification or fast rejection sampling (FRS)")
-      ->check(CLI::IsMember(names(kMethods)))
+      ->check(CLI::IsMember(names(lightsampler::kMethodNames)))
       ->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads; 0: all hardware threads")
       ->capture_default_str();
   app.add_option("--backend", backend,
                  "sampler backend; auto: Vulkan on a GPU, else the native CPU backend")
-      ->check(CLI::IsMember(names(kBackends)))
+      ->check(CLI::IsMember(names(lightsampler::kBackendNames)))
       ->capture_default_str();
   app.add_option("--device", options.device,
                  "Vulkan device by index or name (also LIGHTSAMPLER_VULKAN_DEVICE); implies Vulkan "
@@ -64,17 +58,17 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
   app.add_option("--counting", counting,
                  "Vulkan counting pass: raster (the paper's UV rasterization), compute (balanced), "
                  "or per-triangle (the paper's naive ablation)")
-      ->check(CLI::IsMember(names(kCountings)))
+      ->check(CLI::IsMember(names(lightsampler::kRequestableCountings)))
       ->capture_default_str();
   add_refine_option(app, options.refinement);
   app.add_option("--scan", scan,
                  "cumulative sum of the per-triangle counts (lookback: decoupled look-back, Vulkan only)")
-      ->check(CLI::IsMember(names(kScans)))
+      ->check(CLI::IsMember(names(lightsampler::kScanOrderNames)))
       ->capture_default_str();
   app.add_option("--overlap", overlap,
                  "triangle-texel overlap of TRS's counting: the closed form, polygon clipping, or the "
                  "paper's Eq. 6 SDF approximation (biased; for experiments)")
-      ->check(CLI::IsMember(names(kOverlaps)))
+      ->check(CLI::IsMember(names(lightsampler::kOverlapNames)))
       ->capture_default_str();
   app.add_option("--exact-after", options.exact_after,
                  "TRS: rejections in a row after which the rest of a segment is drawn exactly from "
@@ -82,9 +76,7 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
                  "the paper's rule")
       ->capture_default_str();
   app.add_option("--address", address, "what UVs outside [0, 1] read")
-      ->check(CLI::IsMember(std::vector<std::string>{
-          lightsampler::to_string(lightsampler::Addressing::wrap), lightsampler::to_string(lightsampler::Addressing::clamp),
-          lightsampler::to_string(lightsampler::Addressing::mirror)}))
+      ->check(CLI::IsMember(names(lightsampler::kAddressingNames)))
       ->capture_default_str();
   app.add_option("--map-encoding", encoding,
                  "transfer function of the map's values; auto: 8/16-bit images are sRGB unless "
@@ -112,13 +104,13 @@ std::variant<Options, int> parse_options(int argc, char** argv) {
     return kUsageError;
   }
   // The names were checked by IsMember.
-  options.method = kMethods.at(method);
-  options.backend = kBackends.at(backend);
-  options.counting = kCountings.at(counting);
-  options.scan = kScans.at(scan);
-  options.overlap = kOverlaps.at(overlap);
-  options.addressing = lightsampler::parse_addressing(address).value();
-  options.map_encoding = kEncodings.at(encoding);
+  options.method = named(lightsampler::kMethodNames, method);
+  options.backend = named(lightsampler::kBackendNames, backend);
+  options.counting = named(lightsampler::kRequestableCountings, counting);
+  options.scan = named(lightsampler::kScanOrderNames, scan);
+  options.overlap = named(lightsampler::kOverlapNames, overlap);
+  options.addressing = named(lightsampler::kAddressingNames, address);
+  options.map_encoding = named(kEncodings, encoding);
   if (!out.empty()) options.out = out;
   if (!stats.empty()) options.stats = stats;
   return options;

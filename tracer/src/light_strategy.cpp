@@ -58,10 +58,4 @@ LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1,
           b1, b2, emitters.two_sided(light)};
 }
 
-const char* to_string(TreeImportance importance) {
-  return importance == TreeImportance::pbrt ? "pbrt" : "cycles";
-}
-
-const char* to_string(TreePower power) { return power == TreePower::exact ? "exact" : "image-mean"; }
-
 }  // namespace tracer

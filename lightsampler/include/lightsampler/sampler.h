@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "lightsampler/buffer.h"
+#include "lightsampler/enum_names.h"
 #include "lightsampler/mesh.h"
 #include "lightsampler/sample.h"
 #include "lightsampler/texel_pieces.h"
@@ -194,15 +195,38 @@ std::unique_ptr<Sampler> make_cpu_sampler(const MeshView& mesh,
                                           std::span<const DensityMapView> maps,
                                           const CpuOptions& options = {});
 
-const char* to_string(Method method);
-const char* to_string(ScanOrder scan);
-const char* to_string(Overlap overlap);
-const char* to_string(Counting counting);
-const char* to_string(Backend backend);
-const char* to_string(Pass pass);
-/// "wrap", "clamp" or "mirror".
-const char* to_string(Addressing addressing);
-/// The mode to_string() names; none for another name.
-std::optional<Addressing> parse_addressing(std::string_view name);
+/// The names of the enums' values, as the tools and the Python module take and print them.
+inline constexpr EnumName<Method> kMethodNames[] = {
+    {Method::trs, "trs"}, {Method::rejection, "rs"}, {Method::naive, "naive"}, {Method::frs, "frs"}};
+inline constexpr EnumName<ScanOrder> kScanOrderNames[] = {{ScanOrder::automatic, "auto"},
+                                                          {ScanOrder::unordered, "unordered"},
+                                                          {ScanOrder::ordered, "ordered"},
+                                                          {ScanOrder::lookback, "lookback"}};
+inline constexpr EnumName<Overlap> kOverlapNames[] = {
+    {Overlap::closed_form, "closed-form"}, {Overlap::clipping, "clipping"}, {Overlap::sdf, "sdf"}};
+/// Counting::cpu, last, is reported and never requested: the choices a caller has are the others.
+inline constexpr EnumName<Counting> kCountingNames[] = {{Counting::automatic, "auto"},
+                                                        {Counting::raster, "raster"},
+                                                        {Counting::compute, "compute"},
+                                                        {Counting::per_triangle, "per-triangle"},
+                                                        {Counting::cpu, "cpu"}};
+inline constexpr std::span<const EnumName<Counting>> kRequestableCountings =
+    std::span(kCountingNames).first(std::size(kCountingNames) - 1);
+inline constexpr EnumName<Backend> kBackendNames[] = {
+    {Backend::automatic, "auto"}, {Backend::cpu, "cpu"}, {Backend::vulkan, "vulkan"}};
+inline constexpr EnumName<Pass> kPassNames[] = {
+    {Pass::counting, "counting"},         {Pass::rounding, "rounding"}, {Pass::scan, "scan"},
+    {Pass::realization, "realization"},   {Pass::distribution, "distribution"},
+    {Pass::readback, "readback"},         {Pass::refinement, "refinement"}};
+inline constexpr EnumName<Addressing> kAddressingNames[] = {
+    {Addressing::wrap, "wrap"}, {Addressing::clamp, "clamp"}, {Addressing::mirror, "mirror"}};
+
+inline const char* to_string(Method value) { return name_of(kMethodNames, value); }
+inline const char* to_string(ScanOrder value) { return name_of(kScanOrderNames, value); }
+inline const char* to_string(Overlap value) { return name_of(kOverlapNames, value); }
+inline const char* to_string(Counting value) { return name_of(kCountingNames, value); }
+inline const char* to_string(Backend value) { return name_of(kBackendNames, value); }
+inline const char* to_string(Pass value) { return name_of(kPassNames, value); }
+inline const char* to_string(Addressing value) { return name_of(kAddressingNames, value); }
 
 }  // namespace lightsampler

@@ -197,7 +197,12 @@ StrategyChoice choose_strategy(Emitters& emitters, const StrategyOptions& option
 /// `emitters` must outlive the strategy; `trs` draws its point lights with their sampler.
 std::unique_ptr<LightStrategy> make_light_strategy(Emitters& emitters, const StrategyOptions& options);
 
-const char* to_string(TreeImportance importance);
-const char* to_string(TreePower power);
+inline constexpr lightsampler::EnumName<TreeImportance> kTreeImportanceNames[] = {
+    {TreeImportance::pbrt, "pbrt"}, {TreeImportance::cycles, "cycles"}};
+inline constexpr lightsampler::EnumName<TreePower> kTreePowerNames[] = {
+    {TreePower::exact, "exact"}, {TreePower::image_mean, "image-mean"}};
+
+inline const char* to_string(TreeImportance value) { return lightsampler::name_of(kTreeImportanceNames, value); }
+inline const char* to_string(TreePower value) { return lightsampler::name_of(kTreePowerNames, value); }
 
 }  // namespace tracer
