@@ -241,7 +241,7 @@ class PySampler {
     float* d = out.mutable_data();
     py::gil_scoped_release release;
     std::lock_guard lock(busy_);
-    for (py::ssize_t k = 0; k < t.shape(0); ++k) d[k] = sampler_->density(tri[k], u[k], v[k]);
+    for (py::ssize_t k = 0; k < t.shape(0); ++k) d[k] = sampler_->maps().density(tri[k], u[k], v[k]);
     return out;
   }
 

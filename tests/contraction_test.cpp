@@ -55,7 +55,7 @@ TEST(Contraction, TexelLookupsRoundOperationByOperation) {
     const float uv[3][2] = {{c.origin / kWidth, 0.25f}, {(c.origin + c.edge) / kWidth, 0.25f}, {c.origin / kWidth, 0.75f}};
     mesh.add_triangle(p, uv);
     const auto sampler = make_cpu_sampler(mesh.view(), {&view, 1});
-    const std::optional<Texel> texel = sampler->texel(0, c.b1, 0.0f);
+    const std::optional<Texel> texel = sampler->maps().texel(0, c.b1, 0.0f);
     ASSERT_TRUE(texel.has_value());
     EXPECT_EQ(texel->x, std::uint32_t(c.unfused_texel))
         << "origin " << c.origin << " + " << c.b1 << " * edge " << c.edge << ": the library fused the multiply-add";

@@ -31,7 +31,7 @@ Frame generate(const Scenario& s, Method method, Overlap overlap = Overlap::clos
       {.seed = s.seed, .target_count = s.target, .method = method, .overlap = overlap, .exact_after = exact_after},
       frame);
   for (const Sample& x : frame.samples)
-    EXPECT_GT(sampler->density(x.triangle, x.b1, x.b2), 0.0f) << "a sample where the density is zero";
+    EXPECT_GT(sampler->maps().density(x.triangle, x.b1, x.b2), 0.0f) << "a sample where the density is zero";
   return frame;
 }
 

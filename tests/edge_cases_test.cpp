@@ -119,7 +119,7 @@ TEST(EdgeCases, TexelIsTheOneDensityReads) {
     for (int i = 0; i < 20; ++i) {
       float b1 = u(rng), b2 = u(rng);
       if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
-      const std::optional<Texel> texel = sampler->texel(t, b1, b2);
+      const std::optional<Texel> texel = sampler->maps().texel(t, b1, b2);
       if (t == 3) {
         EXPECT_FALSE(texel.has_value());
         continue;
@@ -128,7 +128,7 @@ TEST(EdgeCases, TexelIsTheOneDensityReads) {
       ASSERT_LT(texel->x, map.width);
       ASSERT_LT(texel->y, map.height);
       EXPECT_EQ(texel->map, 0u);
-      EXPECT_EQ(sampler->density(t, b1, b2), map.texels[texel->y * map.width + texel->x] * 2.0f);
+      EXPECT_EQ(sampler->maps().density(t, b1, b2), map.texels[texel->y * map.width + texel->x] * 2.0f);
     }
   }
 }
@@ -233,7 +233,7 @@ TEST(EdgeCases, ExhaustedSamplesAreCountedAndExactDrawsTakeThem) {
     } else {
       EXPECT_EQ(f.exhausted, 0u);
       EXPECT_GT(f.exact_draws, f.sample_count / 2);
-      for (const Sample& s : f.samples) ASSERT_GT(sampler->density(s.triangle, s.b1, s.b2), 0.0f);
+      for (const Sample& s : f.samples) ASSERT_GT(sampler->maps().density(s.triangle, s.b1, s.b2), 0.0f);
     }
   }
 }
@@ -246,12 +246,12 @@ TEST(EdgeCases, UpdatedMapChangesTheNextFrame) {
   Frame frame;
   sampler->generate(target(2000, 1), frame);
   for (const Sample& s : frame.samples) ASSERT_LT(lightsampler::uv(mesh.view(), s).x, 0.5f);
-  EXPECT_EQ(sampler->density(0, 0.0f, 0.0f), 1.0f);  // vertex 0 at uv (0, 0)
+  EXPECT_EQ(sampler->maps().density(0, 0.0f, 0.0f), 1.0f);  // vertex 0 at uv (0, 0)
 
   sampler->update_map(0, right.view());  // a new size too
   sampler->generate(target(2000, 2), frame);
   for (const Sample& s : frame.samples) ASSERT_GE(lightsampler::uv(mesh.view(), s).x, 0.5f);
-  EXPECT_EQ(sampler->density(0, 0.0f, 0.0f), 0.0f);
+  EXPECT_EQ(sampler->maps().density(0, 0.0f, 0.0f), 0.0f);
   EXPECT_THROW(sampler->update_map(1, right.view()), std::out_of_range);
 }
 

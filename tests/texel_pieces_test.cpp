@@ -44,7 +44,7 @@ TEST(TexelPieces, IntegrateTheDensityAsTheCountingPassDoes) {
     sampler->generate({.seed = 1, .realize = false}, frame);
     std::vector<TexelPiece> pieces;
     for (std::uint32_t t = 0; t < sampler->triangle_count(); ++t) {
-      sampler->texel_pieces(t, pieces);
+      sampler->maps().texel_pieces(t, pieces);
       double integral = 0.0;
       for (const TexelPiece& p : pieces) {
         EXPECT_GT(p.density, 0.0f);
@@ -61,7 +61,7 @@ TEST(TexelPieces, IntegrateTheDensityAsTheCountingPassDoes) {
   const auto sampler = lightsampler::make_cpu_sampler(mesh.view(), {&view, 1});
   std::vector<TexelPiece> pieces;
   for (std::uint32_t t = 0; t < sampler->triangle_count(); ++t) {
-    sampler->texel_pieces(t, pieces);
+    sampler->maps().texel_pieces(t, pieces);
     double area = 0.0;
     for (const TexelPiece& p : pieces) area += p.area;
     EXPECT_NEAR(area, 1.0, 1e-9) << "triangle " << t;
@@ -80,28 +80,28 @@ TEST(TexelPieces, OneCellIsCutAsTheWholeTriangleCutsIt) {
   std::vector<TexelPiece> pieces;
   int points = 0, elsewhere = 0;
   for (std::uint32_t t = 0; t < sampler->triangle_count(); ++t) {
-    sampler->texel_pieces(t, pieces);
+    sampler->maps().texel_pieces(t, pieces);
     for (const TexelPiece& p : pieces) {
       for (int i = 0; i < 4; ++i, ++points) {
         const float u_fan = u(rng), u0 = u(rng), u1 = u(rng);
         const lightsampler::Barycentrics b = lightsampler::uniform_point(p, u_fan, u0, u1);
-        const auto by_cell = sampler->texel_piece_point(t, p.cell_x, p.cell_y, u_fan, u0, u1);
+        const auto by_cell = sampler->maps().texel_piece_point(t, p.cell_x, p.cell_y, u_fan, u0, u1);
         ASSERT_TRUE(by_cell.has_value());
         EXPECT_EQ(by_cell->b1, b.b1);
         EXPECT_EQ(by_cell->b2, b.b2);
-        const auto texel = sampler->texel(t, b.b1, b.b2);
+        const auto texel = sampler->maps().texel(t, b.b1, b.b2);
         ASSERT_TRUE(texel.has_value());
         if (texel->x != p.texel.x || texel->y != p.texel.y) {
           ++elsewhere;  // rounding onto the cell's edge
           continue;
         }
-        EXPECT_EQ(sampler->density(t, b.b1, b.b2), p.density);
+        EXPECT_EQ(sampler->maps().density(t, b.b1, b.b2), p.density);
       }
     }
   }
   EXPECT_GT(points, 1000);
   EXPECT_LE(elsewhere, points / 1000);
-  EXPECT_FALSE(sampler->texel_piece_point(0, 1000, 1000, 0.5f, 0.5f, 0.5f).has_value());
+  EXPECT_FALSE(sampler->maps().texel_piece_point(0, 1000, 1000, 0.5f, 0.5f, 0.5f).has_value());
 }
 
 // Points drawn in a piece are uniform in it: over a fine grid of the barycentric plane, the
@@ -116,7 +116,7 @@ TEST(TexelPieces, PointsAreUniformInTheirPiece) {
   const lightsampler::DensityMapView view = map.view();
   const auto sampler = lightsampler::make_cpu_sampler(mesh.view(), {&view, 1});
   std::vector<TexelPiece> pieces;
-  sampler->texel_pieces(0, pieces);
+  sampler->maps().texel_pieces(0, pieces);
   ASSERT_EQ(pieces.size(), 4u);
   const TexelPiece& piece = pieces[0];
   // Area of the piece inside each of G x G bins of [0, 1]^2, by sub-sampling each bin.
@@ -166,8 +166,8 @@ TEST(TexelPieces, EveryBackendCutsTheSamePieces) {
       mesh.view(), {&view, 1}, {.backend = lightsampler::Backend::cpu, .refinement = {.min_acceptance = 0.9f}});
   std::vector<TexelPiece> a, b;
   for (std::uint32_t t = 0; t < cpu->triangle_count(); ++t) {
-    cpu->texel_pieces(t, a);
-    refined->texel_pieces(t, b);
+    cpu->maps().texel_pieces(t, a);
+    refined->maps().texel_pieces(t, b);
     ASSERT_EQ(a.size(), b.size());
     for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i].vertices, b[i].vertices);
   }

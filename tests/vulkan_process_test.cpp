@@ -117,7 +117,7 @@ void expect_working(Sampler& sampler, double target, std::uint64_t seed) {
   ASSERT_GT(frame.sample_count, 0u);
   ASSERT_EQ(frame.samples.size(), frame.sample_count);
   EXPECT_EQ(frame.exhausted, 0u);
-  for (const Sample& s : frame.samples) ASSERT_GT(sampler.density(s.triangle, s.b1, s.b2), 0.0f);
+  for (const Sample& s : frame.samples) ASSERT_GT(sampler.maps().density(s.triangle, s.b1, s.b2), 0.0f);
 }
 
 TEST_F(VulkanTest, OneInstanceAndOneDeviceServeEveryContextAndSampler) {

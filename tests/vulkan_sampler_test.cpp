@@ -722,7 +722,7 @@ TEST_F(VulkanSampler, OutputsBeyond128MiBAnd65535Workgroups) {
   EXPECT_GT(f.sample_count, 65535ull * 256);
   std::uint64_t bad = 0;
   for (const Sample& s : f.samples)
-    bad += !(s.triangle < 2 && s.b1 >= 0 && s.b2 >= 0 && s.b1 + s.b2 <= 1 && sampler->density(s.triangle, s.b1, s.b2) > 0);
+    bad += !(s.triangle < 2 && s.b1 >= 0 && s.b2 >= 0 && s.b1 + s.b2 <= 1 && sampler->maps().density(s.triangle, s.b1, s.b2) > 0);
   EXPECT_EQ(bad, 0u);
 }
 

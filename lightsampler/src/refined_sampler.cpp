@@ -69,19 +69,7 @@ class RefinedSampler final : public Sampler {
       parts_->update_map(index, map);
   }
 
-  float density(std::uint32_t triangle, float b1, float b2) const override {
-    return input_.density(triangle, b1, b2);
-  }
-  std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const override {
-    return input_.texel(triangle, b1, b2);
-  }
-  void texel_pieces(std::uint32_t triangle, std::vector<TexelPiece>& out) const override {
-    input_.texel_pieces(triangle, out);
-  }
-  std::optional<Barycentrics> texel_piece_point(std::uint32_t triangle, std::int64_t cell_x, std::int64_t cell_y,
-                                                float u_fan, float u0, float u1) const override {
-    return input_.texel_piece_point(triangle, cell_x, cell_y, u_fan, u0, u1);
-  }
+  MapQueries maps() const override { return MapQueries(input_); }
 
   void generate(const FrameRequest& request, Frame& frame) override {
     double refine_ms = 0.0;
@@ -118,7 +106,7 @@ class RefinedSampler final : public Sampler {
   /// moved back by a millionth of the triangle, along whichever barycentric axis crosses back.
   Sample on_its_texel(const Sample& part_sample) const {
     const Sample s = refined_->to_parent(part_sample);
-    const std::optional<Texel> drawn = parts_->texel(part_sample.triangle, part_sample.b1, part_sample.b2);
+    const std::optional<Texel> drawn = parts_->maps().texel(part_sample.triangle, part_sample.b1, part_sample.b2);
     const auto on_drawn = [&](const Sample& x) {
       const std::optional<Texel> t = input_.texel(x.triangle, x.b1, x.b2);
       return !drawn || (t && t->map == drawn->map && t->x == drawn->x && t->y == drawn->y);

@@ -63,7 +63,7 @@ std::uint64_t samples_on_cut_texels(Emitters& emitters) {
   EXPECT_GT(frame.samples.size(), 900000u);
   std::uint64_t on_cut = 0;
   for (const lightsampler::Sample& s : frame.samples.span()) {
-    const auto texel = emitters.sampler().texel(s.triangle, s.b1, s.b2);
+    const auto texel = emitters.sampler().maps().texel(s.triangle, s.b1, s.b2);
     if (texel && cut(texel->x, texel->y)) ++on_cut;
   }
   return on_cut;
@@ -163,7 +163,7 @@ ChiSquareResult transformed_image_test(Emitters& emitters, const QuadOverPlane& 
   lightsampler::Frame frame;
   emitters.sampler().generate({.seed = 7, .target_count = 2e5}, frame);
   for (const lightsampler::Sample& s : frame.samples.span()) {
-    const auto texel = emitters.sampler().texel(s.triangle, s.b1, s.b2);
+    const auto texel = emitters.sampler().maps().texel(s.triangle, s.b1, s.b2);
     if (texel) observed[texel->y * kTexWidth + texel->x] += 1.0;
   }
   double total = 0.0, weight = 0.0;

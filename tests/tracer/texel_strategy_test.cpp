@@ -127,7 +127,7 @@ std::map<std::array<std::uint32_t, 3>, double> texel_shares(const Emitters& emit
   std::map<std::array<std::uint32_t, 3>, double> shares;
   std::vector<lightsampler::TexelPiece> pieces;
   for (std::uint32_t l = 0; l < emitters.count(); ++l) {
-    emitters.sampler().texel_pieces(l, pieces);
+    emitters.sampler().maps().texel_pieces(l, pieces);
     for (const auto& p : pieces)
       shares[{l, p.texel.x, p.texel.y}] += double(p.density) * p.area * emitters.area(l) / total;
   }
@@ -146,7 +146,7 @@ std::vector<double> counts(const LightStrategy& strategy, const Emitters& emitte
     for (auto& word : random) word = std::uint32_t(rng());
     const auto s = strategy.sample(random, at);
     if (!s) continue;
-    const auto texel = emitters.sampler().texel(s->light, s->b1, s->b2);
+    const auto texel = emitters.sampler().maps().texel(s->light, s->b1, s->b2);
     observed[{s->light, texel->x, texel->y}] += 1.0;
   }
   std::vector<double> out;
@@ -181,7 +181,7 @@ TEST(PieceTable, DrawsWithinALightByItsTexture) {
   const std::uint32_t light = 2;  // of the second quad: most of its texels are black
   std::map<std::array<std::uint32_t, 2>, double> share, observed, uniform;
   std::vector<lightsampler::TexelPiece> pieces;
-  emitters.sampler().texel_pieces(light, pieces);
+  emitters.sampler().maps().texel_pieces(light, pieces);
   for (const auto& p : pieces)
     share[{p.texel.x, p.texel.y}] += double(p.density) * p.area * emitters.area(light) / table.light_weight(light);
   std::mt19937 rng(9);
@@ -191,11 +191,11 @@ TEST(PieceTable, DrawsWithinALightByItsTexture) {
     const PieceTable::Pick pick = table.pick_in_light(light, std::uint64_t(rng()) << 32 | rng());
     ASSERT_EQ(table.light(pick.piece), light);
     const auto b = table.point(pick.piece, float(pick.u), u(rng), u(rng));
-    const auto texel = emitters.sampler().texel(light, b.b1, b.b2);
+    const auto texel = emitters.sampler().maps().texel(light, b.b1, b.b2);
     observed[{texel->x, texel->y}] += 1.0;
     float b1 = u(rng), b2 = u(rng);
     if (b1 + b2 > 1.0f) b1 = 1.0f - b1, b2 = 1.0f - b2;
-    const auto elsewhere = emitters.sampler().texel(light, b1, b2);
+    const auto elsewhere = emitters.sampler().maps().texel(light, b1, b2);
     uniform[{elsewhere->x, elsewhere->y}] += 1.0;
   }
   std::vector<double> probability, drawn, blind;

@@ -122,7 +122,7 @@ std::span<const lightsampler::DensityMapView> Emitters::maps() const { return ma
 
 glm::vec3 Emitters::emission(std::uint32_t light, float b1, float b2) const {
   const EmissionMap& e = (*maps_)[light_maps_[light]];
-  const std::optional<lightsampler::Texel> texel = sampler_->texel(light, b1, b2);
+  const std::optional<lightsampler::Texel> texel = sampler_->maps().texel(light, b1, b2);
   if (!texel) return glm::vec3(0.0f);
   return e.strength * e.radiance[std::size_t(texel->y) * e.width + texel->x];
 }
@@ -132,7 +132,7 @@ float Emitters::opacity(std::uint32_t light, float b1, float b2) const {
 }
 
 float Emitters::density(std::uint32_t light, float b1, float b2) const {
-  return sampler_->density(light, b1, b2);
+  return sampler_->maps().density(light, b1, b2);
 }
 
 glm::vec3 Emitters::position(std::uint32_t light, float b1, float b2) const {

@@ -137,6 +137,41 @@ struct SamplerSetup {
   std::uint64_t parts = 0;      ///< triangles the backend samples: the subdivision's parts, else the mesh's
 };
 
+namespace core {
+class HostScene;
+}
+
+/// The density maps on the mesh as a sampler reads them. Every backend answers these on the
+/// host, from the same maps it samples, so that a renderer's pdf, its emission lookups and its
+/// exact draws read the very texels its samples were drawn from. Valid while its sampler lives.
+class MapQueries {
+ public:
+  explicit MapQueries(const core::HostScene& scene) : scene_(&scene) {}
+
+  /// Density (samples per world area) at a point of a triangle, read exactly as the sampler
+  /// reads it (same texel, same addressing), so that a renderer's pdf agrees with the samples.
+  float density(std::uint32_t triangle, float b1, float b2) const;
+
+  /// The texel that density() reads at that point, after addressing; none for a triangle
+  /// without a map. A renderer that reads its own per-texel data there (emitted radiance) stays
+  /// texel for texel with the sampler.
+  std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const;
+
+  /// The triangle's pieces of non-zero density, row by row of the lattice (texel_pieces.h), into
+  /// `out` (cleared first): their densities times their areas integrate the density over the
+  /// triangle exactly. A triangle without UV area is one piece.
+  void texel_pieces(std::uint32_t triangle, std::vector<TexelPiece>& out) const;
+  /// A uniform point of the piece of one lattice cell (TexelPiece::cell_x, cell_y), cut as
+  /// texel_pieces cuts it, from three uniforms in [0, 1) as uniform_point takes them: a caller
+  /// that keeps its pieces by cell draws in them without keeping their polygons. None where the
+  /// triangle does not overlap that cell.
+  std::optional<Barycentrics> texel_piece_point(std::uint32_t triangle, std::int64_t cell_x,
+                                                std::int64_t cell_y, float u_fan, float u0, float u1) const;
+
+ private:
+  const core::HostScene* scene_;
+};
+
 /// A sampler bound to one mesh and its density maps. Implementations: the CPU backend
 /// (make_cpu_sampler); the Vulkan backend.
 class Sampler {
@@ -160,26 +195,8 @@ class Sampler {
   /// Generates one frame into `frame`.
   virtual void generate(const FrameRequest& request, Frame& frame) = 0;
 
-  /// Density (samples per world area) at a point of a triangle, read exactly as the sampler
-  /// reads it (same texel, same addressing), so that a renderer's pdf agrees with the samples.
-  virtual float density(std::uint32_t triangle, float b1, float b2) const = 0;
-
-  /// The texel that density() reads at that point, after addressing; none for a triangle
-  /// without a map. A renderer that reads its own per-texel data there (emitted radiance) stays
-  /// texel for texel with the sampler.
-  virtual std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const = 0;
-
-  /// The triangle's pieces of non-zero density, row by row of the lattice (texel_pieces.h), into
-  /// `out` (cleared first): their densities times their areas integrate the density over the
-  /// triangle exactly. A triangle without UV area is one piece.
-  virtual void texel_pieces(std::uint32_t triangle, std::vector<TexelPiece>& out) const = 0;
-  /// A uniform point of the piece of one lattice cell (TexelPiece::cell_x, cell_y), cut as
-  /// texel_pieces cuts it, from three uniforms in [0, 1) as uniform_point takes them: a caller
-  /// that keeps its pieces by cell draws in them without keeping their polygons. None where the
-  /// triangle does not overlap that cell.
-  virtual std::optional<Barycentrics> texel_piece_point(std::uint32_t triangle, std::int64_t cell_x,
-                                                        std::int64_t cell_y, float u_fan, float u0,
-                                                        float u1) const = 0;
+  /// The density maps as this sampler reads them.
+  virtual MapQueries maps() const = 0;
 };
 
 struct CpuOptions {

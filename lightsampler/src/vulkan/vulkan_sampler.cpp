@@ -134,20 +134,7 @@ class VulkanSampler final : public Sampler {
     frs_.reset();
   }
 
-  float density(std::uint32_t triangle, float b1, float b2) const override {
-    return scene_.host().density(triangle, b1, b2);
-  }
-
-  std::optional<Texel> texel(std::uint32_t triangle, float b1, float b2) const override {
-    return scene_.host().texel(triangle, b1, b2);
-  }
-  void texel_pieces(std::uint32_t triangle, std::vector<TexelPiece>& out) const override {
-    scene_.host().texel_pieces(triangle, out);
-  }
-  std::optional<Barycentrics> texel_piece_point(std::uint32_t triangle, std::int64_t cell_x, std::int64_t cell_y,
-                                                float u_fan, float u0, float u1) const override {
-    return scene_.host().texel_piece_point(triangle, cell_x, cell_y, u_fan, u0, u1);
-  }
+  MapQueries maps() const override { return MapQueries(scene_.host()); }
 
   void generate(const FrameRequest& request, Frame& frame) override {
     core::begin_frame(request, frame);

@@ -41,7 +41,7 @@ PieceTable::PieceTable(const Emitters& emitters, std::size_t max_pieces)
                     [&](const tbb::blocked_range<std::uint32_t>& range) {
                       std::vector<lightsampler::TexelPiece> pieces;
                       for (std::uint32_t l = range.begin(); l != range.end(); ++l) {
-                        sampler.texel_pieces(l, pieces);
+                        sampler.maps().texel_pieces(l, pieces);
                         if (total.fetch_add(pieces.size()) + pieces.size() > max_pieces) return;
                         const double area = emitters.area(l);
                         for (const lightsampler::TexelPiece& p : pieces) {
@@ -87,7 +87,7 @@ PieceTable::Pick PieceTable::pick_in_light(std::uint32_t light, std::uint64_t wo
 lightsampler::Barycentrics PieceTable::point(std::size_t piece, float u_fan, float u0, float u1) const {
   const Cell& c = cells_[piece];
   // The same cut as when the table was built: the cell's piece exists.
-  return *emitters_.sampler().texel_piece_point(c.light, c.x, c.y, u_fan, u0, u1);
+  return *emitters_.sampler().maps().texel_piece_point(c.light, c.x, c.y, u_fan, u0, u1);
 }
 
 std::size_t PieceTable::bytes() const {
