@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """What each light strategy costs before and during a render: set-up by part and frame time.
 
-Renders each scene with each configuration (a few frames with trs-render: the image is not what
+Renders each scene with each configuration (a few passes with trs-render: the image is not what
 is measured) and reads its stats: the set-up by part (setup_ms: loading, texture decoding, the
 BVH, the emission maps, the light sampler and its subdivision, the light structure, the first
 frame), the parts the light sampler samples, and the milliseconds of a frame and of its light
@@ -59,7 +59,7 @@ def measure(render, scene, settings, config, args, work):
     row = {f"{part}_ms": s["setup_ms"][part] for part in PARTS}
     row["setup_ms"] = sum(s["setup_ms"][part] for part in PARTS if part != "first_pass")
     row["parts"] = s["light_sampler_parts"]
-    row["frame_ms"] = 1000.0 * s["render_seconds"] / max(s["frames"], 1)
+    row["pass_ms"] = 1000.0 * s["render_seconds"] / max(s["passes"], 1)
     row["sampler_ms"] = s["sampler_ms_per_pass"]
     row["used"] = (s["strategy_choice"] or {}).get("used", s["settings"]["strategy"])
     return row
@@ -84,7 +84,7 @@ def main():
         for folder in args.scenes:
             scene, settings = scene_files(folder)
             print(f"\n{scene.parent.name}\n")
-            print("| configuration | used | set-up ms | x baseline | largest part | parts | frame ms | light sampler ms |")
+            print("| configuration | used | set-up ms | x baseline | largest part | parts | pass ms | light sampler ms |")
             print("|---|---|---|---|---|---|---|---|")
             baseline = None
             for config in args.configs:
@@ -95,12 +95,12 @@ def main():
                 baseline = baseline or row["setup_ms"]
                 largest = max(PARTS[:-1], key=lambda part: row[f"{part}_ms"])
                 print(f"| {config} | {row['used']} | {row['setup_ms']:.0f} | {row['setup_ms'] / baseline:.2f} | "
-                      f"{largest} {row[largest + '_ms']:.0f} | {row['parts']:.0f} | {row['frame_ms']:.1f} | "
+                      f"{largest} {row[largest + '_ms']:.0f} | {row['parts']:.0f} | {row['pass_ms']:.1f} | "
                       f"{row['sampler_ms']:.2f} |", flush=True)
     if args.csv:
         with open(args.csv, "w", newline="") as f:
             writer = csv.DictWriter(f, fieldnames=["scene", "config", "used", "setup_ms", *(f"{p}_ms" for p in PARTS),
-                                                   "parts", "frame_ms", "sampler_ms"])
+                                                   "parts", "pass_ms", "sampler_ms"])
             writer.writeheader()
             writer.writerows(rows)
 

@@ -30,13 +30,14 @@ def study(*args, program=None, environment=None):
                           env=environment)
 
 
-def study_module():
-    """trs-study imported as a module, for its functions."""
+def plots_module():
+    """trs-study's pictures (study_plots.py, beside it), imported as trs-study imports them, for
+    their functions."""
     sys.dont_write_bytecode = True  # no __pycache__ beside it
     loader = importlib.machinery.SourceFileLoader("trs_study", str(TOOLS.study))
-    module = importlib.util.module_from_spec(importlib.util.spec_from_loader("trs_study", loader))
-    loader.exec_module(module)
-    return module
+    loader.exec_module(importlib.util.module_from_spec(importlib.util.spec_from_loader("trs_study", loader)))
+    import study_plots  # found where trs-study, loaded, finds its modules
+    return study_plots
 
 
 class Study(unittest.TestCase):
@@ -78,7 +79,7 @@ class Study(unittest.TestCase):
     def test_one_row_per_image_with_the_named_columns(self):
         rows = self.rows()
         self.assertEqual(len(rows), len(STRATEGIES) * 3 * 2)  # (2 spp + 1 time) x 2 seeds
-        self.assertEqual(list(rows[0].keys())[:13], ["strategy", "spp", "time", "seed", "seconds", "frames",
+        self.assertEqual(list(rows[0].keys())[:13], ["strategy", "spp", "time", "seed", "seconds", "passes",
                                                       "relmse", "relmse_lit", "rmse", "mean_ratio", "image", "lights",
                                                       "relmse_lit_32"])
         self.assertEqual({r["frame"] for r in rows}, {""})  # a still
@@ -88,7 +89,7 @@ class Study(unittest.TestCase):
                 self.assertEqual(r["spp"], "")
                 self.assertGreaterEqual(float(r["seconds"]), 0.3)
             else:
-                self.assertEqual(r["frames"], r["spp"])
+                self.assertEqual(r["passes"], r["spp"])
 
     def test_relmse_agrees_with_an_independent_computation(self):
         for r in self.rows():
@@ -195,7 +196,7 @@ class Pictures(unittest.TestCase):
 
     @classmethod
     def setUpClass(cls):
-        cls.trs_study = study_module()
+        cls.plots = plots_module()
 
     @staticmethod
     def rows(spp, time):
@@ -224,10 +225,10 @@ class Pictures(unittest.TestCase):
             line_xs.append([x for x, _ in points])
             return original_spread(axis, points, label, **style)
 
-        original_bars, original_spread = self.trs_study.bars, self.trs_study.spread
-        with tempfile.TemporaryDirectory() as tmp, mock.patch.object(self.trs_study, "bars", bars), \
-                mock.patch.object(self.trs_study, "spread", spread):
-            self.assertEqual(self.trs_study.plot_convergence(Path(tmp), rows), "convergence.png")
+        original_bars, original_spread = self.plots.bars, self.plots.spread
+        with tempfile.TemporaryDirectory() as tmp, mock.patch.object(self.plots, "bars", bars), \
+                mock.patch.object(self.plots, "spread", spread):
+            self.assertEqual(self.plots.plot_convergence(Path(tmp), rows), "convergence.png")
             self.assertEqual((Path(tmp) / "convergence.png").read_bytes()[:8], b"\x89PNG\r\n\x1a\n")
         return bar_units, line_xs
 
@@ -249,7 +250,7 @@ class Pictures(unittest.TestCase):
         reference = np.full((90, 160, 3), 0.02)
         reference[lit & ~np.pad(np.ones((45, 80), dtype=bool), ((45, 0), (0, 80)))] = 2.0
         reference[75:85, 50:70] = 0.5
-        rows, columns = self.trs_study.lit_crop(lit, reference)
+        rows, columns = self.plots.lit_crop(lit, reference)
         self.assertEqual((rows.stop - rows.start, columns.stop - columns.start), (30, 53))
         self.assertGreaterEqual(lit[rows, columns].mean(), 0.9)
         self.assertTrue(rows.start <= 75 and rows.stop >= 85 and columns.start <= 50 and columns.stop >= 70,
@@ -257,7 +258,7 @@ class Pictures(unittest.TestCase):
 
     def test_nothing_lit_crops_the_centre(self):
         import numpy as np
-        rows, columns = self.trs_study.lit_crop(np.zeros((90, 160), dtype=bool), np.ones((90, 160, 3)))
+        rows, columns = self.plots.lit_crop(np.zeros((90, 160), dtype=bool), np.ones((90, 160, 3)))
         self.assertEqual((rows, columns), (slice(30, 60), slice(53, 106)))
 
 

@@ -26,7 +26,7 @@ def main(out, reference, name, *strategies):
     for strategy in strategies:
         stats = json.loads((out / f"{name}-{strategy}.json").read_text())
         relmse = json.loads((out / f"{name}-{strategy}-noise.json").read_text())["overall"]["relmse"]
-        label = f"{strategy}: {stats['frames']} spp in {stats['wall_seconds']:.1f} s, relMSE {relmse:.3g} over the lit pixels"
+        label = f"{strategy}: {stats['passes']} spp in {stats['wall_seconds']:.1f} s, relMSE {relmse:.3g} over the lit pixels"
         panels.append((read_exr(out / f"{name}-{strategy}.exr"), label, relmse, stats))
     panels.append((read_exr(reference), "reference", None, None))
 
@@ -40,8 +40,8 @@ def main(out, reference, name, *strategies):
     figure.savefig(out / "compare.png")
 
     (first, _, noise_a, a), (second, _, noise_b, b) = panels[0], panels[1]
-    print(f"At equal time ({a['wall_seconds']:.1f} s and {b['wall_seconds']:.1f} s: {a['frames']} and "
-          f"{b['frames']} spp), against the reference over the lit pixels, {strategies[1]} is "
+    print(f"At equal time ({a['wall_seconds']:.1f} s and {b['wall_seconds']:.1f} s: {a['passes']} and "
+          f"{b['passes']} spp), against the reference over the lit pixels, {strategies[1]} is "
           f"{noise_a / noise_b:.1f}x less noisy than {strategies[0]} (relMSE {noise_a:.3g} and {noise_b:.3g}).")
     print(f"Wrote {out / 'compare.png'}")
 
