@@ -7,7 +7,8 @@ the commit recorded below), so the output depends only on those commits:
     /usr/bin/python3 tools/make_real_scenes.py --mirrors MIRRORS scenes/real [NAME ...]
 
 `--mirrors DIR` holds one bare repository per source, named as in SOURCES (`owner+name/repo`,
-or `owner+name/repo/.git`). Debian's python3 with python3-numpy and python3-openimageio.
+or `owner+name/repo/.git`). Debian's python3 with python3-numpy and python3-openimageio. The
+glTF accessor reader and the rotations come from the package tools/scenes_gen/.
 
 What it does to each asset (scenes/real/README.md lists it per asset):
 - .glb files become .gltf + .bin + image files; the asset's geometry is copied into
@@ -35,16 +36,25 @@ What it does to each asset (scenes/real/README.md lists it per asset):
 
 import argparse
 import gzip
-import io
 import json
 import math
 import os
 import struct
 import subprocess
 import sys
+import tempfile
+from pathlib import Path
 
 import numpy as np
 import OpenImageIO as oiio
+
+# The package lives beside this script; importing it must not leave a __pycache__ folder in the
+# source tree.
+sys.dont_write_bytecode = True
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from scenes_gen.gltf import (ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER, FLOAT, TRIANGLES,  # noqa: E402
+                             UNSIGNED_INT, read_accessor)
+from scenes_gen.vec import look_at, quaternion  # noqa: E402
 
 NON_EMISSIVE_MAX = 1024
 JPEG_QUALITY = 88
@@ -339,23 +349,6 @@ def quat_to_mat(q):
         [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
-def mat_to_quat(m):
-    t = m[0, 0] + m[1, 1] + m[2, 2]
-    if t > 0:
-        s = math.sqrt(t + 1.0) * 2
-        q = [(m[2, 1] - m[1, 2]) / s, (m[0, 2] - m[2, 0]) / s, (m[1, 0] - m[0, 1]) / s, 0.25 * s]
-    elif m[0, 0] > m[1, 1] and m[0, 0] > m[2, 2]:
-        s = math.sqrt(1.0 + m[0, 0] - m[1, 1] - m[2, 2]) * 2
-        q = [0.25 * s, (m[0, 1] + m[1, 0]) / s, (m[0, 2] + m[2, 0]) / s, (m[2, 1] - m[1, 2]) / s]
-    elif m[1, 1] > m[2, 2]:
-        s = math.sqrt(1.0 + m[1, 1] - m[0, 0] - m[2, 2]) * 2
-        q = [(m[0, 1] + m[1, 0]) / s, 0.25 * s, (m[1, 2] + m[2, 1]) / s, (m[0, 2] - m[2, 0]) / s]
-    else:
-        s = math.sqrt(1.0 + m[2, 2] - m[0, 0] - m[1, 1]) * 2
-        q = [(m[0, 2] + m[2, 0]) / s, (m[1, 2] + m[2, 1]) / s, 0.25 * s, (m[1, 0] - m[0, 1]) / s]
-    return [round(float(v), 9) for v in q]
-
-
 def node_matrix(node):
     if "matrix" in node:
         return np.array(node["matrix"], dtype=float).reshape(4, 4).T
@@ -368,36 +361,36 @@ def node_matrix(node):
     return m
 
 
-def world_corners(gltf):
-    """The corners of every kept primitive's POSITION bounds, in world space (N x 3)."""
-    pts = []
-
+def mesh_instances(gltf):
+    """(world matrix, mesh) for every mesh node instance of the default scene."""
     def visit(n, parent):
         node = gltf["nodes"][n]
         m = parent @ node_matrix(node)
         if "mesh" in node:
-            for p in gltf["meshes"][node["mesh"]]["primitives"]:
-                a = gltf["accessors"][p["attributes"]["POSITION"]]
-                lo, hi = a["min"], a["max"]
-                for i in range(8):
-                    c = [hi[k] if (i >> k) & 1 else lo[k] for k in range(3)]
-                    pts.append((m @ np.array(c + [1.0]))[:3])
+            yield m, gltf["meshes"][node["mesh"]]
         for c in node.get("children", []):
-            visit(c, m)
+            yield from visit(c, m)
 
     for n in gltf["scenes"][gltf.get("scene", 0)]["nodes"]:
-        visit(n, np.eye(4))
+        yield from visit(n, np.eye(4))
+
+
+def world_corners(gltf):
+    """The corners of every kept primitive's POSITION bounds, in world space (N x 3)."""
+    pts = []
+    for m, mesh in mesh_instances(gltf):
+        for p in mesh["primitives"]:
+            a = gltf["accessors"][p["attributes"]["POSITION"]]
+            lo, hi = a["min"], a["max"]
+            for i in range(8):
+                c = [hi[k] if (i >> k) & 1 else lo[k] for k in range(3)]
+                pts.append((m @ np.array(c + [1.0]))[:3])
     return np.array(pts)
 
 
-def look_at_quat(eye, target):
-    f = np.array(target, float) - np.array(eye, float)
-    f /= np.linalg.norm(f)
-    z = -f
-    x = np.cross([0.0, 1.0, 0.0], z)
-    x /= np.linalg.norm(x)
-    y = np.cross(z, x)
-    return mat_to_quat(np.stack([x, y, z], axis=1))
+def rotation(q):
+    """A node's rotation as the staged file writes it."""
+    return [round(float(v), 9) for v in q]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -407,7 +400,6 @@ def look_at_quat(eye, target):
 def read_pixels(data, unassociated=False):
     """Decodes image bytes with OpenImageIO (through a temporary file: ImageBuf reads files).
     OpenImageIO multiplies colour by alpha as it reads; `unassociated` keeps the colour as stored."""
-    import tempfile
     with tempfile.NamedTemporaryFile(suffix=".img", delete=False) as f:
         f.write(data)
         name = f.name
@@ -470,6 +462,14 @@ def texture_slots(m):
     return [(owner, key, alpha) for owner, key, alpha in slots if key in owner]
 
 
+def texture_infos(m):
+    """Every textureInfo a material keeps, its emission map's included."""
+    infos = [owner[key] for owner, key, _ in texture_slots(m)]
+    if "emissiveTexture" in m:
+        infos.append(m["emissiveTexture"])
+    return infos
+
+
 def uv_set(info):
     """The TEXCOORD set a textureInfo reads (KHR_texture_transform's texCoord overrides)."""
     transform = info.get("extensions", {}).get("KHR_texture_transform", {})
@@ -512,9 +512,7 @@ def prune(gltf, spec):
             p.pop("targets", None)
             keep = {"POSITION", "NORMAL", "TEXCOORD_0"}
             if "material" in p:  # and TEXCOORD_1 where a kept texture reads it
-                m = gltf["materials"][p["material"]]
-                infos = [owner[key] for owner, key, _ in texture_slots(m)]
-                infos += [m["emissiveTexture"]] if "emissiveTexture" in m else []
+                infos = texture_infos(gltf["materials"][p["material"]])
                 keep |= {f"TEXCOORD_{uv_set(info)}" for info in infos}
             p["attributes"] = {k: v for k, v in p["attributes"].items() if k in keep}
 
@@ -700,6 +698,8 @@ def box_quads(lo, hi, inward):
 
 
 def room_geometry(plinth_height):
+    """The grey room, closed on all six sides (scenes_gen.mesh.room() leaves one open), and the
+    plinth but its bottom: positions, normals and indices, each quad split from its first corner."""
     r = ROOM
     w, d, h = r["width"] / 2, r["depth"] / 2, r["height"]
     quads = box_quads((-w, 0.0, -d), (w, h, d), inward=True)
@@ -723,18 +723,19 @@ def add_room(gltf, plinth_height):
     uv = np.zeros((len(pos), 2), np.float32)
     blob = bytearray()
     views = []
-    for arr, target in ((idx, 34963), (pos, 34962), (nrm, 34962), (uv, 34962)):
+    for arr, target in ((idx, ELEMENT_ARRAY_BUFFER), (pos, ARRAY_BUFFER), (nrm, ARRAY_BUFFER),
+                        (uv, ARRAY_BUFFER)):
         views.append({"buffer": 1, "byteOffset": len(blob), "byteLength": arr.nbytes, "target": target})
         blob += arr.tobytes()
     bv0 = len(gltf["bufferViews"])
     gltf["bufferViews"] += views
     a0 = len(gltf["accessors"])
     gltf["accessors"] += [
-        {"bufferView": bv0, "componentType": 5125, "count": int(idx.size), "type": "SCALAR"},
-        {"bufferView": bv0 + 1, "componentType": 5126, "count": len(pos), "type": "VEC3",
+        {"bufferView": bv0, "componentType": UNSIGNED_INT, "count": int(idx.size), "type": "SCALAR"},
+        {"bufferView": bv0 + 1, "componentType": FLOAT, "count": len(pos), "type": "VEC3",
          "min": [float(v) for v in pos.min(0)], "max": [float(v) for v in pos.max(0)]},
-        {"bufferView": bv0 + 2, "componentType": 5126, "count": len(pos), "type": "VEC3"},
-        {"bufferView": bv0 + 3, "componentType": 5126, "count": len(pos), "type": "VEC2"},
+        {"bufferView": bv0 + 2, "componentType": FLOAT, "count": len(pos), "type": "VEC3"},
+        {"bufferView": bv0 + 3, "componentType": FLOAT, "count": len(pos), "type": "VEC2"},
     ]
     gltf.setdefault("materials", []).append({
         "name": "room_grey_diffuse",
@@ -742,7 +743,7 @@ def add_room(gltf, plinth_height):
                                  "metallicFactor": 0.0, "roughnessFactor": 1.0}})
     gltf["meshes"].append({"name": "room", "primitives": [{
         "attributes": {"POSITION": a0 + 1, "NORMAL": a0 + 2, "TEXCOORD_0": a0 + 3},
-        "indices": a0, "material": len(gltf["materials"]) - 1, "mode": 4}]})
+        "indices": a0, "material": len(gltf["materials"]) - 1, "mode": TRIANGLES}]})
     gltf["nodes"].append({"name": "room", "mesh": len(gltf["meshes"]) - 1})
     return bytes(blob), len(gltf["nodes"]) - 1, int(idx.size // 3)
 
@@ -752,50 +753,28 @@ def add_camera(gltf, eye, target, yfov_deg):
         "yfov": round(math.radians(yfov_deg), 6), "aspectRatio": 16 / 9, "znear": 0.01, "zfar": 100.0}}]
     gltf["nodes"].append({"name": "staging_camera", "camera": 0,
                           "translation": [round(float(v), 6) for v in eye],
-                          "rotation": look_at_quat(eye, target)})
+                          "rotation": rotation(look_at(eye, target))})
     return len(gltf["nodes"]) - 1
 
 
 def count_triangles(gltf):
-    """Triangles over the node instances of the default scene: (total, with an emission map,
+    """Triangles over the mesh instances of the default scene: (total, with an emission map,
     with a constant emission, transmissive)."""
     total = emit = constant = clear = 0
-
-    def visit(n):
-        nonlocal total, emit, constant, clear
-        node = gltf["nodes"][n]
-        if "mesh" in node:
-            for p in gltf["meshes"][node["mesh"]]["primitives"]:
-                k = gltf["accessors"][p["indices"]]["count"] // 3 if "indices" in p else \
-                    gltf["accessors"][p["attributes"]["POSITION"]]["count"] // 3
-                total += k
-                m = gltf["materials"][p["material"]] if "material" in p else {}
-                if any(v > 0 for v in m.get("emissiveFactor", [0, 0, 0])):
-                    if "emissiveTexture" in m:
-                        emit += k
-                    else:
-                        constant += k
-                if "KHR_materials_transmission" in m.get("extensions", {}):
-                    clear += k
-        for c in node.get("children", []):
-            visit(c)
-
-    for n in gltf["scenes"][gltf.get("scene", 0)]["nodes"]:
-        visit(n)
+    for _, mesh in mesh_instances(gltf):
+        for p in mesh["primitives"]:
+            k = gltf["accessors"][p["indices"]]["count"] // 3 if "indices" in p else \
+                gltf["accessors"][p["attributes"]["POSITION"]]["count"] // 3
+            total += k
+            m = gltf["materials"][p["material"]] if "material" in p else {}
+            if any(v > 0 for v in m.get("emissiveFactor", [0, 0, 0])):
+                if "emissiveTexture" in m:
+                    emit += k
+                else:
+                    constant += k
+            if "KHR_materials_transmission" in m.get("extensions", {}):
+                clear += k
     return total, emit, constant, clear
-
-
-def read_accessor(gltf, bins, index):
-    a = gltf["accessors"][index]
-    bv = gltf["bufferViews"][a["bufferView"]]
-    dtype = {5121: np.uint8, 5123: np.uint16, 5125: np.uint32, 5126: np.float32}[a["componentType"]]
-    n = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[a["type"]]
-    item = np.dtype(dtype).itemsize * n
-    stride = bv.get("byteStride", item)
-    start = bv.get("byteOffset", 0) + a.get("byteOffset", 0)
-    raw = np.frombuffer(bins[bv["buffer"]], np.uint8, count=stride * (a["count"] - 1) + item, offset=start)
-    rows = np.lib.stride_tricks.as_strided(raw, (a["count"], item), (stride, 1))
-    return np.ascontiguousarray(rows).view(dtype).reshape(a["count"], n)
 
 
 def count_emitting(out_dir, name):
@@ -821,33 +800,25 @@ def count_emitting(out_dir, name):
             tables[img] = (sat, mask.shape[1], mask.shape[0])
         return tables[img]
 
-    def visit(n):
-        nonlocal lit
-        node = gltf["nodes"][n]
-        if "mesh" in node:
-            for p in gltf["meshes"][node["mesh"]]["primitives"]:
-                m = gltf["materials"][p["material"]]
-                if "emissiveTexture" not in m or not any(v > 0 for v in m.get("emissiveFactor", [0, 0, 0])):
-                    continue
-                sat, w, h = table(gltf["textures"][m["emissiveTexture"]["index"]]["source"])
-                uv = read_accessor(gltf, bins, p["attributes"]["TEXCOORD_0"]).astype(np.float64)
-                tri = read_accessor(gltf, bins, p["indices"]).reshape(-1, 3)
-                t = uv[tri]  # triangles x 3 x 2
-                lo = np.floor(t.min(1) * [w, h]).astype(np.int64)
-                hi = np.floor(t.max(1) * [w, h]).astype(np.int64)
-                shift = np.floor_divide(lo, [w, h]) * [w, h]
-                lo -= shift
-                hi -= shift
-                full = (hi[:, 0] - lo[:, 0] >= w) | (hi[:, 1] - lo[:, 1] >= h)
-                hi = np.minimum(hi, lo + [w - 1, h - 1])
-                x0, y0, x1, y1 = lo[:, 0], lo[:, 1], hi[:, 0] + 1, hi[:, 1] + 1
-                count = sat[y1, x1] - sat[y0, x1] - sat[y1, x0] + sat[y0, x0]
-                lit += int(np.count_nonzero((count > 0) | (full & (sat[-1, -1] > 0))))
-        for c in node.get("children", []):
-            visit(c)
-
-    for n in gltf["scenes"][gltf.get("scene", 0)]["nodes"]:
-        visit(n)
+    for _, mesh in mesh_instances(gltf):
+        for p in mesh["primitives"]:
+            m = gltf["materials"][p["material"]]
+            if "emissiveTexture" not in m or not any(v > 0 for v in m.get("emissiveFactor", [0, 0, 0])):
+                continue
+            sat, w, h = table(gltf["textures"][m["emissiveTexture"]["index"]]["source"])
+            uv = np.array(read_accessor(gltf, bins, p["attributes"]["TEXCOORD_0"]), np.float64)
+            tri = np.array(read_accessor(gltf, bins, p["indices"])).reshape(-1, 3)
+            t = uv[tri]  # triangles x 3 x 2
+            lo = np.floor(t.min(1) * [w, h]).astype(np.int64)
+            hi = np.floor(t.max(1) * [w, h]).astype(np.int64)
+            shift = np.floor_divide(lo, [w, h]) * [w, h]
+            lo -= shift
+            hi -= shift
+            full = (hi[:, 0] - lo[:, 0] >= w) | (hi[:, 1] - lo[:, 1] >= h)
+            hi = np.minimum(hi, lo + [w - 1, h - 1])
+            x0, y0, x1, y1 = lo[:, 0], lo[:, 1], hi[:, 0] + 1, hi[:, 1] + 1
+            count = sat[y1, x1] - sat[y0, x1] - sat[y1, x0] + sat[y0, x0]
+            lit += int(np.count_nonzero((count > 0) | (full & (sat[-1, -1] > 0))))
     return lit
 
 
@@ -880,7 +851,7 @@ def stage(name, spec, mirrors, out_root):
                                   (p[:, 2].min() + p[:, 2].max()) / 2])
         root = {"name": name + "_staging", "children": list(scene["nodes"]),
                 "translation": [round(float(v), 6) for v in offset],
-                "rotation": mat_to_quat(rot), "scale": [round(scale, 9)] * 3}
+                "rotation": rotation(quaternion(*rot.T)), "scale": [round(scale, 9)] * 3}
         gltf["nodes"].append(root)
         scene["nodes"] = [len(gltf["nodes"]) - 1]
         for m in gltf.get("materials", []):  # a volume's attenuation distance is in world units
@@ -916,9 +887,7 @@ def stage(name, spec, mirrors, out_root):
     used = set()
     for m in gltf.get("materials", []):
         used |= set(m.get("extensions", {}))
-        infos = [owner[key] for owner, key, _ in texture_slots(m)]
-        infos += [m["emissiveTexture"]] if "emissiveTexture" in m else []
-        for info in infos:
+        for info in texture_infos(m):
             used |= set(info.get("extensions", {}))
     if used:
         gltf["extensionsUsed"] = sorted(used)

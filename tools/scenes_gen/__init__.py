@@ -6,6 +6,9 @@ SCENES maps each scene's folder name to its builder, which returns (Gltf, title,
 MATERIAL_SCENES does the same for scenes/materials, which tools/make_material_scenes.py writes:
 one material feature each (coverage, normal maps, texture transforms and wrap modes, and the
 material extensions: transmission, volume, ior and specular, clearcoat, sheen, a lamp's shade).
+
+tools/make_real_scenes.py, which stages others' assets, reads their accessors with gltf's
+read_accessor and turns the nodes it adds (object, camera) with vec's quaternion and look_at.
 """
 from .atlas_sign import atlas_sign
 from .blend_glass import blend_glass

@@ -4,11 +4,13 @@ import json
 import struct
 from pathlib import Path
 
-from .vec import add, cross, dot, f32, mul, normalize, quaternion, short_f32, sub
+from .vec import add, cross, dot, f32, look_at, mul, normalize, quaternion, short_f32, sub
 
 GENERATOR = "tools/make_scenes.py"  # the asset's "generator": the command that writes the scenes
 MATERIALS_GENERATOR = "tools/make_material_scenes.py"  # the same for scenes/materials
-FLOAT, UNSIGNED_INT = 5126, 5125  # glTF component types
+UNSIGNED_BYTE, UNSIGNED_SHORT, UNSIGNED_INT, FLOAT = 5121, 5123, 5125, 5126  # glTF component types
+COMPONENT_FORMATS = {UNSIGNED_BYTE: "B", UNSIGNED_SHORT: "H", UNSIGNED_INT: "I", FLOAT: "f"}
+TYPE_WIDTHS = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
 ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
 NEAREST, CLAMP_TO_EDGE, REPEAT, MIRRORED_REPEAT = 9728, 33071, 10497, 33648
 TRIANGLES = 4
@@ -215,16 +217,11 @@ class Gltf:
                     "extensions": {"KHR_lights_punctual": {"light": len(lights) - 1}}})
 
     def camera(self, eye, target, yfov):
-        """A perspective camera at `eye` looking at `target`, +y up. glTF cameras look down
-        their local -z with +y up, so the node's rotation takes those axes there."""
-        forward = normalize(sub(target, eye))
-        right = normalize(cross(forward, (0, 1, 0)))
-        up = cross(right, forward)
-        rotation = quaternion(right, up, mul(forward, -1))
+        """A perspective camera at `eye` looking at `target`, +y up."""
         self.doc["cameras"].append({"name": "camera", "type": "perspective", "perspective": {
             "yfov": yfov, "aspectRatio": round(WIDTH / HEIGHT, 6), "znear": 0.05}})
         self._node({"name": "camera", "camera": 0, "translation": list(eye),
-                    "rotation": [round(q, 7) for q in rotation]})
+                    "rotation": [round(q, 7) for q in look_at(eye, target)]})
 
     def write(self, folder):
         self.doc["buffers"].append({"uri": self.name + ".bin", "byteLength": len(self.blob)})
@@ -236,15 +233,19 @@ class Gltf:
             texture.write(folder)
 
 
-def read_accessor(doc, blob, index):
-    """An accessor's elements (tuples, or ints for indices), asserting it lies in its view."""
+def read_accessor(doc, buffers, index):
+    """An accessor's elements as stored (tuples, or numbers for a SCALAR), asserting it lies in
+    its view; `buffers` holds the bytes of each of the document's buffers."""
     accessor = doc["accessors"][index]
     view = doc["bufferViews"][accessor["bufferView"]]
-    width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}[accessor["type"]]
-    code = "I" if accessor["componentType"] == UNSIGNED_INT else "f"
-    assert accessor["count"] * width * 4 <= view["byteLength"], index
-    flat = struct.unpack_from(f"<{accessor['count'] * width}{code}", blob, view["byteOffset"])
-    return [flat[i:i + width] for i in range(0, len(flat), width)] if width > 1 else list(flat)
+    width = TYPE_WIDTHS[accessor["type"]]
+    element = struct.Struct(f"<{width}{COMPONENT_FORMATS[accessor['componentType']]}")
+    stride = view.get("byteStride", element.size)
+    offset, count = accessor.get("byteOffset", 0), accessor["count"]
+    assert offset + stride * (count - 1) + element.size <= view["byteLength"], index
+    blob, start = buffers[view["buffer"]], view.get("byteOffset", 0) + offset
+    rows = [element.unpack_from(blob, start + i * stride) for i in range(count)]
+    return rows if width > 1 else [row[0] for row in rows]
 
 
 def check(doc, blob, facing_away=()):
@@ -258,21 +259,22 @@ def check(doc, blob, facing_away=()):
         assert view["byteOffset"] % 4 == 0
         assert view["byteOffset"] + view["byteLength"] <= len(blob)
     eye = next(node["translation"] for node in doc["nodes"] if "camera" in node)
+    buffers = [blob]
     for mesh in doc["meshes"]:
         for primitive in mesh["primitives"]:
             attributes = primitive["attributes"]
-            p, n, uv = (read_accessor(doc, blob, attributes[key])
+            p, n, uv = (read_accessor(doc, buffers, attributes[key])
                         for key in ("POSITION", "NORMAL", "TEXCOORD_0"))
-            indices = read_accessor(doc, blob, primitive["indices"])
+            indices = read_accessor(doc, buffers, primitive["indices"])
             bounds = doc["accessors"][attributes["POSITION"]]
             assert len(p) == len(n) == len(uv) and len(indices) % 3 == 0
             assert [f32(x) for x in bounds["min"]] == [min(v[k] for v in p) for k in range(3)]
             assert [f32(x) for x in bounds["max"]] == [max(v[k] for v in p) for k in range(3)]
             assert all(0 <= i < len(p) for i in indices)
             if "TEXCOORD_1" in attributes:
-                assert len(read_accessor(doc, blob, attributes["TEXCOORD_1"])) == len(p)
+                assert len(read_accessor(doc, buffers, attributes["TEXCOORD_1"])) == len(p)
             if "TANGENT" in attributes:
-                tangents = read_accessor(doc, blob, attributes["TANGENT"])
+                tangents = read_accessor(doc, buffers, attributes["TANGENT"])
                 assert len(tangents) == len(p), mesh["name"]
                 for t, normal in zip(tangents, n):
                     assert abs(dot(t[:3], t[:3]) - 1) < 1e-5 and abs(dot(t[:3], normal)) < 1e-5, mesh["name"]

@@ -76,3 +76,11 @@ def quaternion(x_axis, y_axis, z_axis):
         q[i], q[j], q[k] = s / 4, (m[j][i] + m[i][j]) / s, (m[k][i] + m[i][k]) / s
         q[3] = (m[k][j] - m[j][k]) / s
     return normalize(q)
+
+
+def look_at(eye, target):
+    """The rotation [x, y, z, w] that turns a glTF camera (looking down its local -z, +y up) at
+    `target` from `eye`, keeping +y up."""
+    forward = normalize(sub(target, eye))
+    right = normalize(cross(forward, (0, 1, 0)))
+    return quaternion(right, cross(right, forward), mul(forward, -1))
