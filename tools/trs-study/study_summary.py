@@ -16,14 +16,19 @@ def seed_ratios(base_runs, runs):
     return [base[r["seed"]] / r["relmse_lit"] for r in runs if r["seed"] in base and r["relmse_lit"] > 0]
 
 
+def table_head(title, prose, columns):
+    """A section of summary.md up to its table's first row: its heading, its prose, the table's head."""
+    return [f"## {title}", "", *prose, "", "| " + " | ".join(columns) + " |", "|---" * len(columns) + "|"]
+
+
 def lights_table(rows):
     """Per strategy, budget and light count: the median relMSE per lit pixel and over lit blocks,
     and the passes rendered."""
     import numpy as np
-    lines = ["## Lights per pass", "",
-             f"Medians over seeds: relMSE per lit pixel, over the means of lit {BLOCK} x {BLOCK} blocks (an",
-             "error the pixels share stays there), and the passes rendered.", "",
-             "| strategy | budget | lights | relMSE per pixel | relMSE, blocks | passes |", "|---" * 6 + "|"]
+    lines = table_head("Lights per pass",
+                       [f"Medians over seeds: relMSE per lit pixel, over the means of lit {BLOCK} x {BLOCK} blocks (an",
+                        "error the pixels share stays there), and the passes rendered."],
+                       ["strategy", "budget", "lights", "relMSE per pixel", "relMSE, blocks", "passes"])
     cells = {}
     for r in rows:
         budget = f"{r['spp']} spp" if r["spp"] != "" else f"{r['time']:g} s"
@@ -39,10 +44,10 @@ def bias_table(rows, name):
     """Each strategy's mean over the lit pixels against the reference's, over all its renders:
     an unbiased strategy's lie around 1, closer the more samples."""
     import numpy as np
-    lines = ["## Mean over the lit pixels", "",
-             "Each render's mean over the lit pixels over the reference's: the mean over all renders",
-             "of the strategy, and the lowest and highest render.", "",
-             "| strategy | renders | mean | lowest | highest |", "|---" * 5 + "|"]
+    lines = table_head("Mean over the lit pixels",
+                       ["Each render's mean over the lit pixels over the reference's: the mean over all renders",
+                        "of the strategy, and the lowest and highest render."],
+                       ["strategy", "renders", "mean", "lowest", "highest"])
     series = {}
     for r in rows:
         series.setdefault(name(r), []).append(r["mean_ratio_lit"])
@@ -55,10 +60,10 @@ def worst_frame_table(rows, name):
     """A sequence's frames: per strategy and budget, the mean relMSE over the frames, the frame
     worst in most seeds, and the worst frame's relMSE (medians over seeds)."""
     import numpy as np
-    lines = ["## Worst frame", "",
-             "Per strategy and budget, medians over seeds: the relMSE over the lit pixels averaged over the",
-             "frames, the frame that is worst in most seeds, and the worst frame's relMSE.", "",
-             "| strategy | budget | mean over frames | worst frame | its relMSE | worst / mean |", "|---" * 6 + "|"]
+    lines = table_head("Worst frame",
+                       ["Per strategy and budget, medians over seeds: the relMSE over the lit pixels averaged over the",
+                        "frames, the frame that is worst in most seeds, and the worst frame's relMSE."],
+                       ["strategy", "budget", "mean over frames", "worst frame", "its relMSE", "worst / mean"])
     cells = {}
     for r in rows:
         key = (name(r), r["spp"] == "", r["spp"] or r["time"], f"{r['spp']} spp" if r["spp"] != "" else f"{r['time']:g} s")
