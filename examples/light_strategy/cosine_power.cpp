@@ -2,7 +2,7 @@
 // tracer and loaded with `trs-render --plugin`. It chooses an emissive triangle in proportion to
 // its emitted power times how squarely it faces the shading point, then a uniform point on it.
 //
-// Light i weighs w_i = P_i max(cos_i, floor): P_i its power (the integral of its emission's
+// Light i weighs w_i = P_i max(cos_i, floor): P_i its power (Emitters::power, watts of
 // luminance), cos_i the cosine between the shading normal and the direction to its centroid. The
 // floor keeps every light that emits drawable, so the estimate stays unbiased where a light whose
 // centroid is below the horizon still reaches the point (a large triangle, a transmissive
@@ -31,8 +31,8 @@ class CosinePower : public tracer::LightStrategy {
 
   std::string name() const override { return "cosine-power"; }
 
-  std::optional<tracer::LightSample> sample(const tracer::LightRandom& random,
-                                            const tracer::ShadingPoint& at) const override {
+  std::optional<tracer::LightLiSample> sample(const tracer::LightRandom& random,
+                                              const tracer::ShadingPoint& at) const override {
     const std::vector<double> cumulative = cumulative_weights(at);
     const double total = cumulative.back();
     if (!(total > 0.0)) return std::nullopt;  // nothing emits
@@ -44,7 +44,7 @@ class CosinePower : public tracer::LightStrategy {
     const float b1 = r * (1.0f - s), b2 = r * s;
     const float density = this->density(light, cumulative);
     if (!(density > 0.0f)) return std::nullopt;
-    return tracer::light_point(emitters_, light, b1, b2, density, density);
+    return tracer::seen_from(emitters_, tracer::light_point(emitters_, light, b1, b2, density, density), at);
   }
 
   float pdf(std::uint32_t light, float, float, const tracer::ShadingPoint& from) const override {
@@ -70,7 +70,7 @@ class CosinePower : public tracer::LightStrategy {
       const glm::vec3 to = centroids_[light] - at.position;
       const float length = glm::length(to);
       const double cosine = length > 0.0f ? double(glm::dot(at.normal, to / length)) : 1.0;
-      sum += emitters_.light_density()[light] * std::max(cosine, floor_);
+      sum += emitters_.power(light) * std::max(cosine, floor_);
       cumulative[light] = sum;
     }
     return cumulative;

@@ -141,8 +141,7 @@ class TrsWithoutSetSize : public LightStrategy {
       : trs_(strategy(emitters, "trs", 1)) {}
   std::string name() const override { return "wrong"; }
   void begin_pass(std::uint64_t seed) override { trs_->begin_pass(seed); }
-  std::optional<LightSample> sample(const LightRandom& random,
-                                    const ShadingPoint& at) const override {
+  std::optional<LightLiSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
     auto s = trs_->sample(random, at);
     if (s) s->pdf = s->mis_pdf;
     return s;

@@ -12,6 +12,10 @@
 // Build. The same nodes whatever the number of threads; every light of positive power in one
 // leaf; each node's bounds hold its children's, its power their sum; no leaf deeper than its
 // trail can record.
+//
+// Power. A light's power (Emitters::power) is what physics says: pi L A per emitting face of a
+// Lambertian triangle, 4 pi I for a point light; `power` chooses each light in proportion to it,
+// two-sided triangles at twice a one-sided one's. Both exact to rounding (relative 1e-6, 1e-12).
 
 #include <gtest/gtest.h>
 
@@ -20,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <vector>
@@ -90,6 +95,44 @@ const ShadingPoint kShadingPoints[] = {
 constexpr int kLights = 400;
 constexpr int kWalks = 1000000;
 const double kAlpha = trs_test::sidak_alpha(0.01, 4);
+
+TEST(LightPower, ALambertianFaceEmitsPiRadianceAreaAPointLightFourPiIntensity) {
+  Scene scene;
+  Material one_sided;
+  one_sided.emissive_factor = glm::vec3(1.0f);
+  one_sided.emissive_strength = 3.0f;  // luminance 3
+  Material two_sided = one_sided;
+  two_sided.double_sided = true;
+  // Two quads of area 2.
+  trs_test::add_quad(scene, {0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, trs_test::add_material(scene, one_sided));
+  trs_test::add_quad(scene, {0, 0, 1}, {2, 0, 1}, {2, 1, 1}, {0, 1, 1}, trs_test::add_material(scene, two_sided));
+  scene.lights.push_back({.kind = PunctualLight::Kind::point, .position = {0, 0, 3}, .intensity = glm::vec3(5.0f)});
+  const Emitters emitters(scene, trs_test::kCpuSampler);
+  ASSERT_EQ(emitters.count(), 4u);
+  const double pi = std::numbers::pi;
+  EXPECT_NEAR(emitters.power(0) + emitters.power(1), pi * 3.0 * 2.0, 1e-6 * pi * 6.0);
+  EXPECT_NEAR(emitters.power(2) + emitters.power(3), 2.0 * pi * 3.0 * 2.0, 1e-6 * pi * 12.0);
+  EXPECT_NEAR(emitters.power(4), 4.0 * pi * 5.0, 1e-6 * pi * 20.0);
+}
+
+TEST(LightPower, ThePowerChoiceWeighsEachLightByIt) {
+  const Bench bench(kLights);
+  const Emitters& emitters = bench.emitters;
+  double total = 0.0;
+  for (std::uint32_t l = 0; l < emitters.count(); ++l) total += emitters.power(l);
+  const auto choice = make_power_choice(emitters);
+  const ShadingPoint& at = kShadingPoints[0];
+  int two_sided = 0;
+  for (std::uint32_t l = 0; l < emitters.count(); ++l) {
+    const double expected = emitters.power(l) / total;
+    EXPECT_NEAR(choice->pmf(l, at), expected, 1e-12 * expected) << l;
+    if (emitters.two_sided(l) && emitters.light_density()[l] > 0.0) {
+      ++two_sided;
+      EXPECT_DOUBLE_EQ(emitters.power(l), 2.0 * std::numbers::pi * emitters.light_density()[l]) << l;
+    }
+  }
+  EXPECT_GT(two_sided, 0);
+}
 
 TEST(LightTree, WalkPicksEachLightWithItsPmf) {
   const Bench bench(kLights);

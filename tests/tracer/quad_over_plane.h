@@ -134,7 +134,7 @@ class WithCandidates : public LightStrategy {
   std::string name() const override { return source_.name(); }
   unsigned candidates() const override { return candidates_; }
   void begin_pass(std::uint64_t seed) override { source_.begin_pass(seed); }
-  std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
+  std::optional<LightLiSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
     return source_.sample(random, at);
   }
   float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
@@ -153,9 +153,11 @@ class DrawnByOneWeighedByAnother : public LightStrategy {
   DrawnByOneWeighedByAnother(std::unique_ptr<LightStrategy> draws, std::unique_ptr<LightStrategy> weighs)
       : draws_(std::move(draws)), weighs_(std::move(weighs)) {}
   std::string name() const override { return "wrong"; }
-  std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
+  std::optional<LightLiSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
     auto s = draws_->sample(random, at);
-    if (s) s->pdf = s->mis_pdf = pdf(s->light, s->b1, s->b2, at);
+    if (s && !s->delta)
+      s->pdf = s->mis_pdf =
+          solid_angle_density(pdf(s->light, s->b1, s->b2, at), s->distance, glm::dot(-s->wi, s->normal));
     return s;
   }
   float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {

@@ -61,11 +61,6 @@ bool consistent_sides(const SurfacePoint& point, const glm::vec3& wo, const glm:
 
 }  // namespace
 
-float solid_angle_density(float area_density, float distance, float cos_at_light) {
-  const float c = std::abs(cos_at_light);
-  return c > 0.0f ? area_density * distance * distance / c : 0.0f;
-}
-
 struct PathTracer::Vertex {
   Hit hit;
   SurfacePoint point;
@@ -195,36 +190,17 @@ std::optional<PathTracer::Visibility> PathTracer::visibility(glm::vec3 origin, g
 
 /// A light sample seen from a shading point: what it would bring if nothing blocked it.
 struct PathTracer::Connection {
-  LightSample light;
-  glm::vec3 wi;
-  float distance;
-  float cos_light;
-  glm::vec3 unshadowed;  ///< f Le / (solid-angle density of the light sample), no MIS weight
+  LightLiSample light;
+  glm::vec3 unshadowed;  ///< f Li / (solid-angle density of the light sample), no MIS weight
 };
 
 std::optional<PathTracer::Connection> PathTracer::connect(const Vertex& vertex, const Bsdf& bsdf,
-                                                          const LightSample& s) const {
-  glm::vec3 wi, le;
-  float distance, cos_light = 0.0f, pdf;
-  if (s.delta) {  // what the light brings here, and the probability of choosing it
-    wi = s.normal;
-    distance = s.distant ? kInfinity : glm::length(s.position - vertex.point.position);
-    le = s.radiance;
-    pdf = s.pdf;
-  } else {
-    const glm::vec3 to_light = s.position - vertex.point.position;
-    distance = glm::length(to_light);
-    if (!(distance > 0.0f)) return std::nullopt;
-    wi = to_light / distance;
-    le = s.radiance_towards(-wi) * emitters_.coat_transmittance(s.light, s.b1, s.b2, -wi);
-    cos_light = glm::dot(-wi, s.normal);
-    pdf = solid_angle_density(s.pdf, distance, cos_light);
-  }
-  if (is_black(le) || !(pdf > 0.0f)) return std::nullopt;
-  if (!consistent_sides(vertex.point, vertex.wo, wi)) return std::nullopt;
-  const glm::vec3 f = bsdf.eval(vertex.wo, wi);
+                                                          const LightLiSample& s) const {
+  if (is_black(s.li) || !(s.pdf > 0.0f)) return std::nullopt;
+  if (!consistent_sides(vertex.point, vertex.wo, s.wi)) return std::nullopt;
+  const glm::vec3 f = bsdf.eval(vertex.wo, s.wi);
   if (is_black(f)) return std::nullopt;
-  return Connection{s, wi, distance, cos_light, f * le / pdf};
+  return Connection{s, f * s.li / s.pdf};
 }
 
 /// Next-event estimation, weighed against BSDF sampling: a light sample of the strategy, or for
@@ -239,36 +215,35 @@ std::optional<PathTracer::Connection> PathTracer::connect(const Vertex& vertex, 
 glm::vec3 PathTracer::light_sample(const Vertex& vertex, const Bsdf& bsdf, PathRandom& random,
                                    std::uint64_t& rays) const {
   const std::optional<Resampled<Connection>> chosen = resample<Connection>(
-      strategy_, random, vertex.shading_point(), [&](const LightSample& s) { return connect(vertex, bsdf, s); });
+      strategy_, random, vertex.shading_point(), [&](const LightLiSample& s) { return connect(vertex, bsdf, s); });
   if (!chosen) return glm::vec3(0.0f);
   const Connection& kept = chosen->kept;
-  const LightSample& light = kept.light;
+  const LightLiSample& light = kept.light;
   const glm::vec3& position = vertex.point.position;
   const glm::vec3& ng = vertex.point.geometric_normal;
   // Both ends pushed off their surfaces towards each other, so that neither blocks the ray; a
   // punctual light is approached short of its position, so that a fixture it sits on does not
   // hide it, and a directional one without end.
-  const glm::vec3 origin = offset(position, ng, kept.wi);
+  const glm::vec3 origin = offset(position, ng, light.wi);
   glm::vec3 target;
   float length;
   if (light.delta) {
-    target = light.distant ? origin + kept.wi : light.position;
-    length = light.distant ? kInfinity : glm::length(target - origin) * (1.0f - 1e-4f);
+    target = light.distant() ? origin + light.wi : light.position;
+    length = light.distant() ? kInfinity : glm::length(target - origin) * (1.0f - 1e-4f);
   } else {
-    target = offset(light.position, light.normal, -kept.wi);
+    target = offset(light.position, light.normal, -light.wi);
     length = glm::length(target - origin);
   }
   if (!(length > 0.0f)) return glm::vec3(0.0f);
   const std::optional<Visibility> seen =
-      visibility(origin, light.distant ? kept.wi : (target - origin) / glm::length(target - origin), length, rays);
+      visibility(origin, light.distant() ? light.wi : (target - origin) / glm::length(target - origin), length, rays);
   if (!seen) return glm::vec3(0.0f);
   glm::vec3 contribution = kept.unshadowed * seen->transmittance * chosen->scale;
-  if (const Volume* medium = medium_along(scene_.materials[vertex.point.material], ng, kept.wi))
-    contribution *= medium->transmittance(kept.distance);
+  if (const Volume* medium = medium_along(scene_.materials[vertex.point.material], ng, light.wi))
+    contribution *= medium->transmittance(light.distance);
   // No BSDF sample finds a delta light: its sample takes the whole weight.
   if (light.delta) return contribution;
-  return contribution * power_heuristic(solid_angle_density(light.mis_pdf, kept.distance, kept.cos_light),
-                                        bsdf.pdf(vertex.wo, kept.wi) * seen->probability);
+  return contribution * power_heuristic(light.mis_pdf, bsdf.pdf(vertex.wo, light.wi) * seen->probability);
 }
 
 }  // namespace tracer

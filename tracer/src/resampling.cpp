@@ -19,7 +19,7 @@ class ResampledStrategy : public LightStrategy {
   unsigned candidates() const override { return candidates_; }
   void begin_pass(std::uint64_t seed) override { source_->begin_pass(seed); }
   void emission_changed() override { source_->emission_changed(); }
-  std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
+  std::optional<LightLiSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
     return source_->sample(random, at);
   }
   void prefetch(const LightRandom& random) const override { source_->prefetch(random); }

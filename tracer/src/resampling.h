@@ -30,7 +30,7 @@ struct Resampled {
 };
 
 /// strategy.candidates() light samples for `at`, each made a Connection by `connect` (none where
-/// it brings nothing; its `unshadowed` is f Le over the sample's solid-angle density), one kept.
+/// it brings nothing; its `unshadowed` is f Li over the sample's solid-angle density), one kept.
 template <class Connection, class Connect>
 std::optional<Resampled<Connection>> resample(const LightStrategy& strategy, PathRandom& random,
                                               const ShadingPoint& at, Connect&& connect) {
@@ -49,7 +49,7 @@ std::optional<Resampled<Connection>> resample(const LightStrategy& strategy, Pat
       strategy.prefetch(words[i]);
     }
     for (unsigned i = 0; i < batch; ++i) {
-      const std::optional<LightSample> s = strategy.sample(words[i], at);
+      const std::optional<LightLiSample> s = strategy.sample(words[i], at);
       if (!s) continue;
       std::optional<Connection> c = connect(*s);
       if (!c) continue;

@@ -86,8 +86,15 @@ class Emitters {
   float density(std::uint32_t light, float b1, float b2) const;
   /// The integral of the density over every light (the sampler's N-bar).
   double total_density() const { return total_density_; }
-  /// The integral of the density over each light (N-bar_T): its emitted power, in luminance.
+  /// The integral of the density over each light (N-bar_T): the luminance it emits from one face
+  /// per unit projected solid angle.
   std::span<const double> light_density() const { return light_density_; }
+  /// Emitted power (W, in luminance) of light `light`, numbered as the light choices number
+  /// them: an emissive triangle (below count()), pi times its density integral, twice where it
+  /// emits from both faces (a Lambertian face of radiance L and area A emits pi L A); then
+  /// punctual light `light - count()` (PunctualLights::power). The one measure by which lights
+  /// are weighed against each other by power.
+  double power(std::uint32_t light) const;
   /// The density a light's emission map has on average over the whole map, whatever part of it
   /// the light's UVs cover: mean texel luminance times strength.
   double mean_density(std::uint32_t light) const;

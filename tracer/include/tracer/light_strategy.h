@@ -3,6 +3,7 @@
 // small file in src/strategies/.
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <map>
@@ -19,39 +20,72 @@
 
 namespace tracer {
 
-/// A point on the lights, with everything next-event estimation reads of it. `trs` writes one
-/// per point light every frame (its light records), so that a connection reads one aligned
-/// 64-byte line and looks up no texture.
-struct alignas(64) LightSample {
+/// Where lights are seen from: a shading point. Every light sample is seen from one
+/// (LightLiSample); strategies that weigh lights by distance and orientation (the light tree)
+/// also choose by it.
+struct ShadingPoint {
+  glm::vec3 position;
+  glm::vec3 normal;  ///< unit shading normal
+};
+
+/// A point on an emissive triangle, with what a connection to it reads: `trs` writes one per
+/// point light every pass (its light records), so that a connection reads one aligned 64-byte
+/// line and looks up no texture. Seen from a shading point it is a LightLiSample (seen_from()).
+struct alignas(64) LightPoint {
   glm::vec3 position;
   /// Area density (per world area) the estimator divides by.
   float pdf;
-  glm::vec3 normal;  ///< unit geometric normal of the light's front face; for a delta sample, towards the light
+  glm::vec3 normal;  ///< unit geometric normal of the light's front face
   /// Area density at this point as pdf() gives it, for MIS weights. Equal to `pdf` except for
   /// point-light sets, whose estimator carries the set's size (see TrsStrategy).
   float mis_pdf;
   glm::vec3 radiance;  ///< emitted towards the front, and towards the back if two_sided
-  std::uint32_t light;  ///< an emissive triangle, or for a delta sample a punctual light
+  std::uint32_t light;  ///< the emissive triangle
   float b1;
   float b2;
   bool two_sided;
-  /// A punctual light (PunctualLights): `radiance` is the irradiance it brings to the shading
-  /// point it was drawn for, `pdf` the probability of choosing it, and no BSDF sample finds it.
-  bool delta = false;
-  /// A directional light: `position` is the unit direction towards it.
-  bool distant = false;
 
   /// Radiance leaving the point towards unit direction `w`.
   glm::vec3 radiance_towards(glm::vec3 w) const {
     return two_sided || glm::dot(w, normal) > 0.0f ? radiance : glm::vec3(0.0f);
   }
 };
-static_assert(sizeof(LightSample) == 64);
+static_assert(sizeof(LightPoint) == 64);
+
+/// A light sample seen from a shading point, in solid angle, whatever the light (pbrt-v4's
+/// LightLiSample): what next-event estimation reads. A punctual light's direction is a Dirac
+/// delta, which its `li` and `pdf` leave out, as pbrt-v4's do: `li` is the irradiance it brings
+/// and `pdf` the probability of having chosen it.
+struct LightLiSample {
+  glm::vec3 li;        ///< radiance arriving along wi, through a clearcoat over the light
+  glm::vec3 wi;        ///< unit, from the shading point towards the light
+  float distance;      ///< to the point on the light; infinite for a directional light
+  float pdf;           ///< solid-angle density of wi, which the estimate divides by
+  float mis_pdf;       ///< solid-angle density pdf() gives wi, for MIS; zero for a punctual light
+  glm::vec3 position;  ///< the point on the light; unused for a directional light
+  glm::vec3 normal;    ///< the light's geometric normal there; zero for a punctual light
+  std::uint32_t light;  ///< an emissive triangle, or Emitters::count() + a punctual light
+  float b1 = 0.0f;     ///< where on the triangle
+  float b2 = 0.0f;
+  bool delta = false;  ///< a punctual light: no BSDF sample finds it
+
+  bool distant() const { return std::isinf(distance); }
+};
+
+/// An area density at a light point seen from a shading point, as a solid-angle density.
+inline float solid_angle_density(float area_density, float distance, float cos_at_light) {
+  const float c = std::abs(cos_at_light);
+  return c > 0.0f ? area_density * distance * distance / c : 0.0f;
+}
 
 /// The point (b1, b2) of a light with the densities given, its radiance and normal read from
 /// the emitters.
-LightSample light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,
-                        float pdf, float mis_pdf);
+LightPoint light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,
+                       float pdf, float mis_pdf);
+
+/// `point` seen from `at`: the radiance it sends there through its clearcoat, its densities in
+/// solid angle; none where `at` is on the point itself.
+std::optional<LightLiSample> seen_from(const Emitters& emitters, const LightPoint& point, const ShadingPoint& at);
 
 /// What a strategy draws one point from: eight independent uniform 32-bit words (two blocks of
 /// the path's Philox stream).
@@ -65,13 +99,6 @@ inline std::uint64_t word64(const LightRandom& random, int k) {
 /// A uniform double in [0, 1) from 53 bits of words k and k + 1: a walk down a deep tree reads a
 /// few bits of it at every level.
 inline double uniform53(const LightRandom& random, int k) { return double(word64(random, k) >> 11) * 0x1p-53; }
-
-/// Where lights are seen from: a shading point. Strategies that weigh lights by distance and
-/// orientation (the light tree) read it; the others draw the same whatever it is.
-struct ShadingPoint {
-  glm::vec3 position;
-  glm::vec3 normal;  ///< unit shading normal
-};
 
 /// What a strategy's light sampler did for one pass of paths (one path per pixel).
 struct LightPass {
@@ -106,10 +133,8 @@ class LightStrategy {
   /// The emitters' emission changed (Emitters::set_frame): whatever the strategy built from it
   /// is built again, or refitted.
   virtual void emission_changed() {}
-  /// A point on the lights, seen from `at`; none when the lights have nothing to offer this
-  /// pass.
-  virtual std::optional<LightSample> sample(const LightRandom& random,
-                                            const ShadingPoint& at) const = 0;
+  /// A light sample seen from `at`; none when the lights have nothing to offer it this pass.
+  virtual std::optional<LightLiSample> sample(const LightRandom& random, const ShadingPoint& at) const = 0;
   /// Starts bringing what sample() will read for these words into the cache, so that a shading
   /// point's candidates wait for memory together rather than one after another.
   virtual void prefetch(const LightRandom& random) const { (void)random; }

@@ -26,9 +26,6 @@ inline float power_heuristic(float a, float b) {
   return a2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
 }
 
-/// An area density at a light point seen from a shading point, as a solid-angle density.
-float solid_angle_density(float area_density, float distance, float cos_at_light);
-
 /// One path's estimate.
 struct PathEstimate {
   glm::vec3 radiance{0.0f};
@@ -50,7 +47,7 @@ class PathTracer {
   struct Connection;
   struct Visibility;
   std::optional<Connection> connect(const Vertex& vertex, const Bsdf& bsdf,
-                                    const LightSample& light) const;
+                                    const LightLiSample& light) const;
   /// `from`: the vertex the BSDF sample left, where the light strategy would have been asked.
   glm::vec3 emitted(const Vertex& vertex, float bsdf_pdf, const ShadingPoint* from, float distance) const;
   /// What a shadow ray from `origin` along unit `direction` lets through over `length`; none

@@ -14,9 +14,9 @@
 
 #include "tracer/light_strategy.h"
 
-/// Changes whenever a type a plugin sees (LightStrategy, LightSample, Emitters, StrategyOptions,
+/// Changes whenever a type a plugin sees (LightStrategy, LightLiSample, LightPoint, Emitters, StrategyOptions,
 /// StrategyDefinition) changes its layout: a plugin built against other headers is refused.
-#define TRS_TRACER_PLUGIN_ABI 1
+#define TRS_TRACER_PLUGIN_ABI 2
 
 namespace tracer {
 

@@ -33,7 +33,7 @@ class ChosenLight : public LightStrategy {
     point_->emission_changed();
   }
 
-  std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
+  std::optional<LightLiSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
     const std::optional<LightPick> pick = choice_->pick(random, at);
     if (!pick) return std::nullopt;
     if (pick->light >= emitters_.count()) return punctual_sample(emitters_, pick->light - emitters_.count(), pick->pmf, at);
@@ -42,7 +42,7 @@ class ChosenLight : public LightStrategy {
     // A point seen edge-on, or in a texel without density, carries nothing; pdf() gives it zero too.
     const auto density = float(pick->pmf * p->density);
     if (!(density > 0.0f)) return std::nullopt;
-    return light_point(emitters_, pick->light, p->b.b1, p->b.b2, density, density);
+    return seen_from(emitters_, light_point(emitters_, pick->light, p->b.b1, p->b.b2, density, density), at);
   }
 
   float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {

@@ -68,7 +68,9 @@ std::vector<double> areas(const Emitters& emitters) {
 }
 
 std::vector<double> powers(const Emitters& emitters) {
-  return {emitters.light_density().begin(), emitters.light_density().end()};
+  std::vector<double> p(emitters.count());
+  for (std::uint32_t i = 0; i < emitters.count(); ++i) p[i] = emitters.power(i);
+  return p;
 }
 
 /// The light tree over the triangles and the point and spot lights; directional lights, which

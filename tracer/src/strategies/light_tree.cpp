@@ -222,12 +222,10 @@ std::vector<double> tree_power(const Emitters& emitters, TreePower source) {
   const PunctualLights& punctual = emitters.punctual();
   std::vector<double> power(emitters.count() + punctual.count(), 0.0);
   for (std::uint32_t light = 0; light < emitters.count(); ++light) {
-    const double one_face = source == TreePower::exact ? emitters.light_density()[light]
-                                                       : emitters.area(light) * emitters.mean_density(light);
-    power[light] = emitters.two_sided(light) ? 2.0 * one_face : one_face;
+    const double faces = emitters.two_sided(light) ? 2.0 : 1.0;
+    power[light] = source == TreePower::exact ? emitters.power(light) / kPi
+                                              : faces * emitters.area(light) * emitters.mean_density(light);
   }
-  // A triangle's power here is its emitted power over pi; pbrt-v4 bounds a point or spot light
-  // with 4 pi I, which is 4 I over pi. Directional lights stay out of the tree.
   for (std::uint32_t i = 0; i < punctual.count(); ++i) {
     if (punctual[i].kind != PunctualLight::Kind::directional)
       power[emitters.count() + i] = 4.0 * double(luminance(punctual[i].intensity));

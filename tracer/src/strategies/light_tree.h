@@ -66,10 +66,11 @@ class NodeImportance {
                                                        const ShadingPoint& at) const = 0;
 };
 
-/// The lights' powers as the tree weighs them, the triangles' then the punctual lights': emitted
-/// power in luminance over pi, twice for two-sided triangles (they emit from both faces); 4 I
-/// for point and spot lights (pbrt-v4's bounds); zero for directional lights, which the tree
-/// leaves out.
+/// What the tree weighs each light by, the triangles' then the punctual lights' (pbrt-v4's
+/// LightBounds::phi, on one scale): a bound of its intensity, which for a triangle is its power
+/// over pi (Emitters::power: its radiance times its area, face by face) and for a point light
+/// 4 I, its power over pi too; a spot light is bounded as the point light of its intensity, its
+/// cone saying where it shines. Zero for directional lights, which the tree leaves out.
 std::vector<double> tree_power(const Emitters& emitters, TreePower source);
 
 class LightTree {

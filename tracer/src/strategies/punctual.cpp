@@ -1,11 +1,10 @@
-// Punctual lights beside the emissive triangles: one choice by power between the triangles'
-// strategy, as a whole, and each punctual light, as pbrt-v4's PowerLightSampler chooses among
-// all its lights; the triangles' emitted power is pi times their luminance integrals (twice
-// that where they emit from both faces). A punctual light is a delta light: its sample carries
-// the probability of choosing it and the irradiance it brings, and no BSDF sample finds it.
+// Punctual lights beside the emissive triangles: one choice by power (Emitters::power) between
+// the triangles' strategy, as a whole, and each punctual light, as pbrt-v4's PowerLightSampler
+// chooses among all its lights, each light's probability multiplying its sample's density. A
+// punctual light is a delta light: its sample carries the probability of choosing it and the
+// irradiance it brings, and no BSDF sample finds it.
 
 #include <algorithm>
-#include <numbers>
 
 #include <lightsampler/random.h>
 
@@ -30,11 +29,11 @@ class PunctualMixture : public LightStrategy {
     set_weights();
   }
 
-  std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
+  std::optional<LightLiSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
     // Words 6 and 7: no strategy of the triangles reads them.
     const double u = uniform53(random, 6);
     if (u < area_probability_) {
-      std::optional<LightSample> s = area_->sample(random, at);
+      std::optional<LightLiSample> s = area_->sample(random, at);
       if (s) {
         s->pdf *= float(area_probability_);
         s->mis_pdf *= float(area_probability_);
@@ -64,19 +63,15 @@ class PunctualMixture : public LightStrategy {
   /// The choice's CDF: the triangles first, [0, area_probability_), then each punctual light.
   void set_weights() {
     double area = 0.0;
-    if (area_) {
-      const std::span<const double> integrals = emitters_.light_density();
-      for (std::uint32_t i = 0; i < emitters_.count(); ++i)
-        area += integrals[i] * (emitters_.two_sided(i) ? 2.0 : 1.0);
-      area *= std::numbers::pi;
-    }
-    const PunctualLights& punctual = emitters_.punctual();
-    cdf_.assign(punctual.count(), 0.0);
+    if (area_)
+      for (std::uint32_t i = 0; i < emitters_.count(); ++i) area += emitters_.power(i);
+    const std::uint32_t punctual = emitters_.punctual().count();
+    cdf_.assign(punctual, 0.0);
     double total = area;
-    for (std::uint32_t i = 0; i < punctual.count(); ++i) cdf_[i] = total += punctual.power(i);
+    for (std::uint32_t i = 0; i < punctual; ++i) cdf_[i] = total += emitters_.power(emitters_.count() + i);
     if (!(total > 0.0)) {  // nothing emits (a dark frame): nothing to sample
       area_probability_ = 0.0;
-      cdf_.assign(punctual.count(), 0.0);
+      cdf_.assign(punctual, 0.0);
       return;
     }
     area_probability_ = area / total;
@@ -93,16 +88,19 @@ class PunctualMixture : public LightStrategy {
 
 }  // namespace
 
-std::optional<LightSample> punctual_sample(const Emitters& emitters, std::uint32_t light, double pmf,
-                                           const ShadingPoint& at) {
+std::optional<LightLiSample> punctual_sample(const Emitters& emitters, std::uint32_t light, double pmf,
+                                             const ShadingPoint& at) {
   const PunctualLi li = emitters.punctual().li(light, at.position);
   if (!(li.li.r > 0.0f || li.li.g > 0.0f || li.li.b > 0.0f)) return std::nullopt;
-  const bool distant = emitters.punctual()[light].kind == PunctualLight::Kind::directional;
-  LightSample s{distant ? li.wi : emitters.punctual()[light].position, float(pmf), li.wi, 0.0f, li.li, light,
-                0.0f, 0.0f, false};
-  s.delta = true;
-  s.distant = distant;
-  return s;
+  return LightLiSample{.li = li.li,
+                       .wi = li.wi,
+                       .distance = li.distance,
+                       .pdf = float(pmf),
+                       .mis_pdf = 0.0f,
+                       .position = emitters.punctual()[light].position,
+                       .normal = glm::vec3(0.0f),
+                       .light = emitters.count() + light,
+                       .delta = true};
 }
 
 std::unique_ptr<LightStrategy> with_punctual_lights(const Emitters& emitters, std::unique_ptr<LightStrategy> area,

@@ -26,7 +26,7 @@ std::unique_ptr<LightStrategy> with_punctual_lights(const Emitters& emitters, st
                                                     std::string name);
 /// Punctual light `light` seen from `at`, chosen with probability `pmf`: a delta sample of the
 /// irradiance it brings; none where it brings nothing.
-std::optional<LightSample> punctual_sample(const Emitters& emitters, std::uint32_t light, double pmf,
-                                           const ShadingPoint& at);
+std::optional<LightLiSample> punctual_sample(const Emitters& emitters, std::uint32_t light, double pmf,
+                                             const ShadingPoint& at);
 
 }  // namespace tracer

@@ -25,7 +25,7 @@ class TexelStrategy : public LightStrategy {
   std::string name() const override { return "texel"; }
   void emission_changed() override { build(); }
 
-  std::optional<LightSample> sample(const LightRandom& random, const ShadingPoint&) const override {
+  std::optional<LightLiSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
     if (!alias_) return std::nullopt;  // the lights emit nothing
     const alias::Pick pick = alias_->sample(word64(random, 0));
     const std::uint32_t light = table_->light(pick.index);
@@ -36,7 +36,7 @@ class TexelStrategy : public LightStrategy {
     // what that texel reads, as pdf() gives it; one without density carries nothing.
     const float p = density(light, b.b1, b.b2);
     if (!(p > 0.0f)) return std::nullopt;
-    return light_point(emitters_, light, b.b1, b.b2, p, p);
+    return seen_from(emitters_, light_point(emitters_, light, b.b1, b.b2, p, p), at);
   }
 
   float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint&) const override {

@@ -7,7 +7,7 @@
 // N = 0 included. So the density it divides by is p(x) N_target / N, while MIS weighs with p(x),
 // the density the set has in expectation.
 //
-// After drawing the set, a pass writes each light's record (LightSample): position, normal,
+// After drawing the set, a pass writes each light's record (LightPoint): position, normal,
 // radiance and densities, so that a connection reads one line and no texture. The records are
 // written on the CPU whatever the sampler's backend: the path tracer that reads them runs there,
 // a light's 12-byte sample crosses the bus instead of its 64-byte record, and the refined
@@ -75,14 +75,13 @@ class TrsStrategy : public LightStrategy {
     write_records();
   }
 
-  std::optional<LightSample> sample(const LightRandom& random,
-                                    const ShadingPoint&) const override {
+  std::optional<LightLiSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
     if (records_.empty()) return std::nullopt;
-    const LightSample& s = records_[index(random[0])];
+    const LightPoint& s = records_[index(random[0])];
     // A refined sampler's light is brought back onto the texel it was drawn on; should rounding
     // still leave it on a texel without density, it carries nothing.
     if (!(s.mis_pdf > 0.0f)) return std::nullopt;
-    return s;
+    return seen_from(emitters_, s, at);
   }
 
   void prefetch(const LightRandom& random) const override {
@@ -138,7 +137,7 @@ class TrsStrategy : public LightStrategy {
   double target_;
   lightsampler::Frame frame_;
   float scale_ = 0.0f;  ///< N_target / N
-  std::vector<LightSample, HugePages<LightSample>> records_;  ///< one per light of the frame's set
+  std::vector<LightPoint, HugePages<LightPoint>> records_;  ///< one per light of the frame's set
   double records_ms_ = 0.0;
 };
 
