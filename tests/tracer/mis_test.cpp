@@ -1,7 +1,7 @@
 // MIS: at a shading point, a light sample's weight and the weight the same path gets when BSDF
 // sampling finds it sum to one, for every strategy. That holds only if the density a light
-// sample reports (mis_pdf) is the density pdf() gives at a BSDF hit on the same point, and if
-// pdf() is a normalised area density over the lights. `ris` weighs the light it keeps with that
+// sample reports (mis_pdf, in solid angle) is the density pdf() gives at a BSDF hit on the same
+// point, seen from the shading point, and if pdf() is a normalised area density over the lights. `ris` weighs the light it keeps with that
 // same mis_pdf (PathTracer::light_sample), whichever candidate it keeps. With punctual lights
 // beside the emitters, their delta samples take no part in MIS (a weight of one), and the
 // triangles' pdf() integrates to the probability of drawing a triangle rather than one of them.
