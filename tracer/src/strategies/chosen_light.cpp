@@ -1,9 +1,10 @@
 // The strategies that choose a light for the shading point and then a point on it: a light
-// choice (light_choice.h) times a way to draw a point on a triangle (triangle_point.h).
+// choice (light_choice.h) times a way to draw a point on a triangle (triangle_point.h). Every
+// choice holds the punctual lights too; a punctual light chosen gives its delta sample.
 // - `uniform`: a triangle by its area, a uniform point on it: blind to the emission.
-// - `power`: a triangle by its emitted power, integrated over its texels (the counting pass's
-//   N-bar_T, in luminance), a uniform point on it: what production renderers do, right between
-//   triangles, blind to the texture within one.
+// - `power`: a light by its emitted power (Emitters::power: a triangle's integrated over its
+//   texels by the counting pass), a uniform point on it: what production renderers do, right
+//   between triangles, blind to the texture within one.
 // - `tree`: the light tree's walk from the shading point, a point uniform in the triangle's solid
 //   angle where that pays, by area otherwise.
 // - `tree-texel`: the tree's walk, a point by the triangle's texels.
@@ -82,13 +83,15 @@ TRS_REGISTER_STRATEGY({.name = "uniform",
                        .make = [](const StrategyContext& c) {
                          return make_chosen_light_strategy(c.emitters, make_area_choice(c.emitters),
                                                            make_area_point(c.emitters), "uniform");
-                       }});
+                       },
+                       .draws_punctual_lights = true});
 TRS_REGISTER_STRATEGY({.name = "power",
                        .summary = "triangles by emitted power",
                        .make = [](const StrategyContext& c) {
                          return make_chosen_light_strategy(c.emitters, make_power_choice(c.emitters),
                                                            make_area_point(c.emitters), "power");
-                       }});
+                       },
+                       .draws_punctual_lights = true});
 TRS_REGISTER_STRATEGY({.name = "tree",
                        .summary = "a light tree that weighs the lights for each shading point",
                        .make = [](const StrategyContext& c) {

@@ -13,10 +13,11 @@
 namespace tracer {
 namespace {
 
-/// Triangles in proportion to a weight each, from one 32-bit word.
+/// Lights in proportion to a weight each, from one 32-bit word.
 class WeightChoice : public LightChoice {
  public:
-  /// `weights(emitters)` per triangle, non-negative; all zero, nothing is picked.
+  /// `weights(emitters)` per light, numbered as the choices number them, non-negative; all
+  /// zero, nothing is picked.
   using Weights = std::vector<double> (*)(const Emitters&);
   WeightChoice(const Emitters& emitters, Weights weights) : emitters_(emitters), weights_(weights) {
     emission_changed();
@@ -61,15 +62,25 @@ class WeightChoice : public LightChoice {
   std::vector<double> pmf_;
 };
 
+/// The triangles by area. Beside punctual lights, the triangles as a whole weigh their power,
+/// shared out by area, and each punctual light its own: the choice between them is by power.
 std::vector<double> areas(const Emitters& emitters) {
-  std::vector<double> a(emitters.count());
-  for (std::uint32_t i = 0; i < emitters.count(); ++i) a[i] = emitters.area(i);
-  return a;
+  const std::uint32_t triangles = emitters.count(), punctual = emitters.punctual().count();
+  std::vector<double> w(triangles + punctual);
+  double area = 0.0, power = 0.0;
+  for (std::uint32_t i = 0; i < triangles; ++i) {
+    area += w[i] = emitters.area(i);
+    power += emitters.power(i);
+  }
+  if (punctual == 0) return w;
+  for (std::uint32_t i = 0; i < triangles; ++i) w[i] = area > 0.0 ? w[i] * (power / area) : 0.0;
+  for (std::uint32_t i = triangles; i < w.size(); ++i) w[i] = emitters.power(i);
+  return w;
 }
 
 std::vector<double> powers(const Emitters& emitters) {
-  std::vector<double> p(emitters.count());
-  for (std::uint32_t i = 0; i < emitters.count(); ++i) p[i] = emitters.power(i);
+  std::vector<double> p(emitters.count() + emitters.punctual().count());
+  for (std::uint32_t i = 0; i < p.size(); ++i) p[i] = emitters.power(i);
   return p;
 }
 

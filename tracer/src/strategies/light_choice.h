@@ -1,6 +1,6 @@
 #pragma once
 // Which light a next-event query draws from, and with what probability (pbrt-v4's
-// LightSampler): in proportion to a weight per triangle (its area or its power), or by a walk
+// LightSampler): in proportion to a weight per light (its area or its power), or by a walk
 // down the light tree from the shading point. Lights are numbered as the emitters number their
 // triangles, then the punctual lights after them (Emitters::count() + i): the tree holds point
 // and spot lights as leaves beside the triangles and chooses directional lights apart, as
@@ -36,9 +36,11 @@ class LightChoice {
   virtual StrategySetup setup() const { return {}; }
 };
 
-/// Each triangle in proportion to its area (`uniform`); punctual lights are not among them.
+/// Each triangle in proportion to its area (`uniform`); beside punctual lights, the triangles as a
+/// whole and each punctual light by power (Emitters::power), the triangles' share by area.
 std::unique_ptr<LightChoice> make_area_choice(const Emitters& emitters);
-/// Each triangle in proportion to its emitted power (`power`); punctual lights are not among them.
+/// Each light, punctual ones included, in proportion to its power (`power`; pbrt-v4's
+/// PowerLightSampler).
 std::unique_ptr<LightChoice> make_power_choice(const Emitters& emitters);
 /// The light tree over the triangles and the punctual lights, its walk weighing a node's children
 /// with `importance`.
