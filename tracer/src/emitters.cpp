@@ -36,6 +36,7 @@ Emitters::Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampl
   if (count() == 0) return;  // punctual lights alone: nothing to sample by texels
   const auto sampler_start = std::chrono::steady_clock::now();
   sampler_ = lightsampler::make_sampler(mesh(), maps_->views(), sampler);
+  texels_.emplace(sampler_->maps());
   integrate();  // its first count, in the set-up
   const lightsampler::SamplerSetup sampler_setup = sampler_->setup();
   setup_.sampler_ms = ms_since(sampler_start) - sampler_setup.subdivision_ms;
@@ -128,7 +129,7 @@ std::span<const lightsampler::DensityMapView> Emitters::maps() const { return ma
 
 glm::vec3 Emitters::emission(std::uint32_t light, float b1, float b2) const {
   const EmissionMap& e = (*maps_)[light_maps_[light]];
-  const std::optional<lightsampler::Texel> texel = sampler_->maps().texel(light, b1, b2);
+  const std::optional<lightsampler::Texel> texel = texels_->texel(light, b1, b2);
   if (!texel) return glm::vec3(0.0f);
   return e.strength * e.radiance[std::size_t(texel->y) * e.width + texel->x];
 }
@@ -138,7 +139,7 @@ float Emitters::opacity(std::uint32_t light, float b1, float b2) const {
 }
 
 float Emitters::density(std::uint32_t light, float b1, float b2) const {
-  return sampler_->maps().density(light, b1, b2);
+  return texels_->density(light, b1, b2);
 }
 
 glm::vec3 Emitters::position(std::uint32_t light, float b1, float b2) const {

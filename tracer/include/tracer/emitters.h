@@ -140,6 +140,8 @@ class Emitters {
   std::vector<double> light_density_;
   double total_density_ = 0.0;
   std::unique_ptr<lightsampler::Sampler> sampler_;
+  /// The sampler's maps, asked once: connections read a texel or a density at every point.
+  std::optional<lightsampler::MapQueries> texels_;
   EmittersSetup setup_;
 };
 

@@ -86,7 +86,7 @@ TRS_REGISTER_STRATEGY({.name = "uniform",
                        },
                        .draws_punctual_lights = true});
 TRS_REGISTER_STRATEGY({.name = "power",
-                       .summary = "triangles by emitted power",
+                       .summary = "lights by emitted power",
                        .make = [](const StrategyContext& c) {
                          return make_chosen_light_strategy(c.emitters, make_power_choice(c.emitters),
                                                            make_area_point(c.emitters), "power");

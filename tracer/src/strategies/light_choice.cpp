@@ -67,12 +67,11 @@ class WeightChoice : public LightChoice {
 std::vector<double> areas(const Emitters& emitters) {
   const std::uint32_t triangles = emitters.count(), punctual = emitters.punctual().count();
   std::vector<double> w(triangles + punctual);
-  double area = 0.0, power = 0.0;
-  for (std::uint32_t i = 0; i < triangles; ++i) {
-    area += w[i] = emitters.area(i);
-    power += emitters.power(i);
-  }
+  double area = 0.0;
+  for (std::uint32_t i = 0; i < triangles; ++i) area += w[i] = emitters.area(i);
   if (punctual == 0) return w;
+  double power = 0.0;
+  for (std::uint32_t i = 0; i < triangles; ++i) power += emitters.power(i);
   for (std::uint32_t i = 0; i < triangles; ++i) w[i] = area > 0.0 ? w[i] * (power / area) : 0.0;
   for (std::uint32_t i = triangles; i < w.size(); ++i) w[i] = emitters.power(i);
   return w;
