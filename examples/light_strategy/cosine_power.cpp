@@ -2,7 +2,7 @@
 // tracer and loaded with `trs-render --plugin`. It chooses an emissive triangle in proportion to
 // its emitted power times how squarely it faces the shading point, then a uniform point on it.
 //
-// Light i weighs w_i = P_i max(cos_i, floor): P_i its power (Emitters::power, watts of
+// Light i weighs w_i = P_i max(cos_i, floor): P_i its power (Light::power, watts of
 // luminance), cos_i the cosine between the shading normal and the direction to its centroid. The
 // floor keeps every light that emits drawable, so the estimate stays unbiased where a light whose
 // centroid is below the horizon still reaches the point (a large triangle, a transmissive
@@ -44,7 +44,9 @@ class CosinePower : public tracer::LightStrategy {
     const float b1 = r * (1.0f - s), b2 = r * s;
     const float density = this->density(light, cumulative);
     if (!(density > 0.0f)) return std::nullopt;
-    return tracer::seen_from(emitters_, tracer::light_point(emitters_, light, b1, b2, density, density), at);
+    // The light turns its point into what the shading point sees, in solid angle.
+    const tracer::Light chosen = emitters_.light(light);
+    return chosen.sample_li(chosen.point(b1, b2, density, density), at);
   }
 
   float pdf(std::uint32_t light, float, float, const tracer::ShadingPoint& from) const override {
@@ -70,7 +72,7 @@ class CosinePower : public tracer::LightStrategy {
       const glm::vec3 to = centroids_[light] - at.position;
       const float length = glm::length(to);
       const double cosine = length > 0.0f ? double(glm::dot(at.normal, to / length)) : 1.0;
-      sum += emitters_.power(light) * std::max(cosine, floor_);
+      sum += emitters_.light(light).power() * std::max(cosine, floor_);
       cumulative[light] = sum;
     }
     return cumulative;

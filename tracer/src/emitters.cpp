@@ -115,10 +115,7 @@ float Emitters::coat_transmittance(std::uint32_t light, float b1, float b2, glm:
 
 bool Emitters::two_sided(std::uint32_t light) const { return (*maps_)[light_maps_[light]].double_sided; }
 
-double Emitters::power(std::uint32_t light) const {
-  if (light >= count()) return punctual_.power(light - count());
-  return std::numbers::pi * (two_sided(light) ? 2.0 : 1.0) * light_density_[light];
-}
+double Emitters::power(std::uint32_t light) const { return this->light(light).power(); }
 
 double Emitters::mean_density(std::uint32_t light) const {
   const EmissionMap& e = (*maps_)[light_maps_[light]];

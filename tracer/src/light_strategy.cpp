@@ -53,28 +53,11 @@ std::unique_ptr<LightStrategy> make_light_strategy(Emitters& emitters, const Str
 
 LightPoint light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,
                        float pdf, float mis_pdf) {
-  const glm::vec3 radiance = emitters.emission(light, b1, b2) * emitters.opacity(light, b1, b2);
-  return {emitters.position(light, b1, b2), pdf, emitters.normal(light), mis_pdf, radiance, light,
-          b1, b2, emitters.two_sided(light)};
+  return emitters.light(light).point(b1, b2, pdf, mis_pdf);
 }
 
 std::optional<LightLiSample> seen_from(const Emitters& emitters, const LightPoint& point, const ShadingPoint& at) {
-  const glm::vec3 to_light = point.position - at.position;
-  const float distance = glm::length(to_light);
-  if (!(distance > 0.0f)) return std::nullopt;
-  const glm::vec3 wi = to_light / distance;
-  const float cos_light = glm::dot(-wi, point.normal);
-  return LightLiSample{
-      .li = point.radiance_towards(-wi) * emitters.coat_transmittance(point.light, point.b1, point.b2, -wi),
-      .wi = wi,
-      .distance = distance,
-      .pdf = solid_angle_density(point.pdf, distance, cos_light),
-      .mis_pdf = solid_angle_density(point.mis_pdf, distance, cos_light),
-      .position = point.position,
-      .normal = point.normal,
-      .light = point.light,
-      .b1 = point.b1,
-      .b2 = point.b2};
+  return emitters.light(point.light).sample_li(point, at);
 }
 
 }  // namespace tracer

@@ -147,8 +147,8 @@ glm::vec3 PathTracer::emitted(const Vertex& vertex, float bsdf_pdf, const Shadin
   if (!light) return glm::vec3(0.0f);
   const glm::vec3 le = emitters_.radiance(*light, vertex.hit.b1, vertex.hit.b2, vertex.wo);
   if (!from || is_black(le)) return le;
-  const float light_pdf = solid_angle_density(strategy_.pdf(*light, vertex.hit.b1, vertex.hit.b2, *from), distance,
-                                              glm::dot(vertex.wo, emitters_.normal(*light)));
+  const float light_pdf =
+      emitters_.light(*light).pdf_li(strategy_.pdf(*light, vertex.hit.b1, vertex.hit.b2, *from), vertex.wo, distance);
   return le * power_heuristic(bsdf_pdf, light_pdf);
 }
 

@@ -19,6 +19,7 @@
 #include <glm/glm.hpp>
 #include <lightsampler/backend.h>
 
+#include "tracer/light.h"
 #include "tracer/punctual_lights.h"
 #include "tracer/scene.h"
 
@@ -89,11 +90,10 @@ class Emitters {
   /// The integral of the density over each light (N-bar_T): the luminance it emits from one face
   /// per unit projected solid angle.
   std::span<const double> light_density() const { return light_density_; }
-  /// Emitted power (W, in luminance) of light `light`, numbered as the light choices number
-  /// them: an emissive triangle (below count()), pi times its density integral, twice where it
-  /// emits from both faces (a Lambertian face of radiance L and area A emits pi L A); then
-  /// punctual light `light - count()` (PunctualLights::power). The one measure by which lights
-  /// are weighed against each other by power.
+  /// Light `light`, numbered as the light choices number them: an emissive triangle (below
+  /// count()), then punctual light `light - count()`.
+  Light light(std::uint32_t light) const { return Light(*this, light); }
+  /// light(light).power(): its emitted power, W in luminance.
   double power(std::uint32_t light) const;
   /// The density a light's emission map has on average over the whole map, whatever part of it
   /// the light's UVs cover: mean texel luminance times strength.

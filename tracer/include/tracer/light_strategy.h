@@ -20,71 +20,12 @@
 
 namespace tracer {
 
-/// Where lights are seen from: a shading point. Every light sample is seen from one
-/// (LightLiSample); strategies that weigh lights by distance and orientation (the light tree)
-/// also choose by it.
-struct ShadingPoint {
-  glm::vec3 position;
-  glm::vec3 normal;  ///< unit shading normal
-};
-
-/// A point on an emissive triangle, with what a connection to it reads: `trs` writes one per
-/// point light every pass (its light records), so that a connection reads one aligned 64-byte
-/// line and looks up no texture. Seen from a shading point it is a LightLiSample (seen_from()).
-struct alignas(64) LightPoint {
-  glm::vec3 position;
-  /// Area density (per world area) the estimator divides by.
-  float pdf;
-  glm::vec3 normal;  ///< unit geometric normal of the light's front face
-  /// Area density at this point as pdf() gives it, for MIS weights. Equal to `pdf` except for
-  /// point-light sets, whose estimator carries the set's size (see TrsStrategy).
-  float mis_pdf;
-  glm::vec3 radiance;  ///< emitted towards the front, and towards the back if two_sided
-  std::uint32_t light;  ///< the emissive triangle
-  float b1;
-  float b2;
-  bool two_sided;
-
-  /// Radiance leaving the point towards unit direction `w`.
-  glm::vec3 radiance_towards(glm::vec3 w) const {
-    return two_sided || glm::dot(w, normal) > 0.0f ? radiance : glm::vec3(0.0f);
-  }
-};
-static_assert(sizeof(LightPoint) == 64);
-
-/// A light sample seen from a shading point, in solid angle, whatever the light (pbrt-v4's
-/// LightLiSample): what next-event estimation reads. A punctual light's direction is a Dirac
-/// delta, which its `li` and `pdf` leave out, as pbrt-v4's do: `li` is the irradiance it brings
-/// and `pdf` the probability of having chosen it.
-struct LightLiSample {
-  glm::vec3 li;        ///< radiance arriving along wi, through a clearcoat over the light
-  glm::vec3 wi;        ///< unit, from the shading point towards the light
-  float distance;      ///< to the point on the light; infinite for a directional light
-  float pdf;           ///< solid-angle density of wi, which the estimate divides by
-  float mis_pdf;       ///< solid-angle density pdf() gives wi, for MIS; zero for a punctual light
-  glm::vec3 position;  ///< the point on the light; unused for a directional light
-  glm::vec3 normal;    ///< the light's geometric normal there; zero for a punctual light
-  std::uint32_t light;  ///< an emissive triangle, or Emitters::count() + a punctual light
-  float b1 = 0.0f;     ///< where on the triangle
-  float b2 = 0.0f;
-  bool delta = false;  ///< a punctual light: no BSDF sample finds it
-
-  bool distant() const { return std::isinf(distance); }
-};
-
-/// An area density at a light point seen from a shading point, as a solid-angle density.
-inline float solid_angle_density(float area_density, float distance, float cos_at_light) {
-  const float c = std::abs(cos_at_light);
-  return c > 0.0f ? area_density * distance * distance / c : 0.0f;
-}
-
-/// The point (b1, b2) of a light with the densities given, its radiance and normal read from
-/// the emitters.
+/// emitters.light(light).point(b1, b2, pdf, mis_pdf): the point (b1, b2) of emissive triangle
+/// `light` with the densities given.
 LightPoint light_point(const Emitters& emitters, std::uint32_t light, float b1, float b2,
                        float pdf, float mis_pdf);
 
-/// `point` seen from `at`: the radiance it sends there through its clearcoat, its densities in
-/// solid angle; none where `at` is on the point itself.
+/// emitters.light(point.light).sample_li(point, at): `point` seen from `at`.
 std::optional<LightLiSample> seen_from(const Emitters& emitters, const LightPoint& point, const ShadingPoint& at);
 
 /// What a strategy draws one point from: eight independent uniform 32-bit words (two blocks of

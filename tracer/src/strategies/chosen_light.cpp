@@ -1,6 +1,6 @@
-// The strategies that choose a light for the shading point and then a point on it: a light
-// choice (light_choice.h) times a way to draw a point on a triangle (triangle_point.h). Every
-// choice holds the punctual lights too; a punctual light chosen gives its delta sample.
+// Every strategy as a light choice (light_choice.h) times a point draw (point_draw.h): a light
+// chosen for the shading point, then a point on it. Every choice holds the punctual lights too;
+// a punctual light chosen gives its own delta sample (Light::sample_li).
 // - `uniform`: a triangle by its area, a uniform point on it: blind to the emission.
 // - `power`: a light by its emitted power (Emitters::power: a triangle's integrated over its
 //   texels by the counting pass), a uniform point on it: what production renderers do, right
@@ -8,6 +8,9 @@
 // - `tree`: the light tree's walk from the shading point, a point uniform in the triangle's solid
 //   angle where that pays, by area otherwise.
 // - `tree-texel`: the tree's walk, a point by the triangle's texels.
+// - `trs`, `texel` and plugins that draw their points over the triangles themselves: beside
+//   punctual lights, the triangles taken as one light by their power, their points drawn by the
+//   strategy (with_punctual_lights), as pbrt-v4's PowerLightSampler chooses among all lights.
 // The point's area density is the choice's probability times its density on the light, and pdf()
 // computes both again from the shading point, so that a BSDF hit is weighed exactly as the light
 // sample that could have found it.
@@ -23,34 +26,37 @@ namespace {
 
 class ChosenLight : public LightStrategy {
  public:
-  ChosenLight(const Emitters& emitters, std::unique_ptr<LightChoice> choice, std::unique_ptr<TrianglePoint> point,
+  ChosenLight(const Emitters& emitters, std::unique_ptr<LightChoice> choice, std::unique_ptr<PointDraw> point,
               std::string name)
       : emitters_(emitters), choice_(std::move(choice)), point_(std::move(point)), name_(std::move(name)) {}
 
   std::string name() const override { return name_; }
 
+  void begin_pass(std::uint64_t seed) override { point_->begin_pass(seed); }
+
   void emission_changed() override {
-    choice_->emission_changed();
     point_->emission_changed();
+    choice_->emission_changed();
   }
 
   std::optional<LightLiSample> sample(const LightRandom& random, const ShadingPoint& at) const override {
     const std::optional<LightPick> pick = choice_->pick(random, at);
     if (!pick) return std::nullopt;
-    if (pick->light >= emitters_.count()) return punctual_sample(emitters_, pick->light - emitters_.count(), pick->pmf, at);
-    const std::optional<PointOnLight> p = point_->sample(pick->light, random, choice_->words(), at);
-    if (!p) return std::nullopt;
-    // A point seen edge-on, or in a texel without density, carries nothing; pdf() gives it zero too.
-    const auto density = float(pick->pmf * p->density);
-    if (!(density > 0.0f)) return std::nullopt;
-    return seen_from(emitters_, light_point(emitters_, pick->light, p->b.b1, p->b.b2, density, density), at);
+    if (pick->light != kEveryTriangle && pick->light >= emitters_.count())
+      return emitters_.light(pick->light).sample_li(pick->pmf, at);
+    return point_->sample(*pick, random, choice_->first_point_word(), at);
   }
+
+  void prefetch(const LightRandom& random) const override { point_->prefetch(random); }
 
   float pdf(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
     const double pmf = choice_->pmf(light, from);
     if (!(pmf > 0.0)) return 0.0f;
-    return float(pmf * point_->density(light, b1, b2, from));
+    return point_->pdf(pmf, light, b1, b2, from);
   }
+
+  LightPass last_pass() const override { return point_->last_pass(); }
+  std::string device() const override { return point_->device(); }
 
   StrategySetup setup() const override {
     const StrategySetup choice = choice_->setup(), point = point_->setup();
@@ -60,15 +66,66 @@ class ChosenLight : public LightStrategy {
  private:
   const Emitters& emitters_;
   std::unique_ptr<LightChoice> choice_;
-  std::unique_ptr<TrianglePoint> point_;
+  std::unique_ptr<PointDraw> point_;
   std::string name_;
+};
+
+/// A strategy over the emissive triangles alone as the point draw of the triangles taken as one
+/// light: its sample's densities, and its pdf(), times the probability of that light.
+class TrianglesStrategyPoint : public PointDraw {
+ public:
+  explicit TrianglesStrategyPoint(std::unique_ptr<LightStrategy> triangles) : triangles_(std::move(triangles)) {}
+
+  std::optional<LightLiSample> sample(const LightPick& pick, const LightRandom& random, int,
+                                      const ShadingPoint& at) const override {
+    std::optional<LightLiSample> s = triangles_->sample(random, at);
+    if (s) {
+      s->pdf *= float(pick.pmf);
+      s->mis_pdf *= float(pick.pmf);
+    }
+    return s;
+  }
+  float pdf(double pmf, std::uint32_t light, float b1, float b2, const ShadingPoint& from) const override {
+    return float(pmf) * triangles_->pdf(light, b1, b2, from);
+  }
+
+  void begin_pass(std::uint64_t seed) override { triangles_->begin_pass(seed); }
+  void emission_changed() override { triangles_->emission_changed(); }
+  void prefetch(const LightRandom& random) const override { triangles_->prefetch(random); }
+  LightPass last_pass() const override { return triangles_->last_pass(); }
+  std::string device() const override { return triangles_->device(); }
+  StrategySetup setup() const override { return triangles_->setup(); }
+
+ private:
+  std::unique_ptr<LightStrategy> triangles_;
+};
+
+/// No triangle emits: the grouped choice never picks them.
+class NoTrianglePoint : public PointDraw {
+ public:
+  std::optional<LightLiSample> sample(const LightPick&, const LightRandom&, int, const ShadingPoint&) const override {
+    return std::nullopt;
+  }
+  float pdf(double, std::uint32_t, float, float, const ShadingPoint&) const override { return 0.0f; }
 };
 
 }  // namespace
 
 std::unique_ptr<LightStrategy> make_chosen_light_strategy(const Emitters& emitters, std::unique_ptr<LightChoice> choice,
-                                                          std::unique_ptr<TrianglePoint> point, std::string name) {
+                                                          std::unique_ptr<PointDraw> point, std::string name) {
   return std::make_unique<ChosenLight>(emitters, std::move(choice), std::move(point), std::move(name));
+}
+
+std::unique_ptr<LightStrategy> with_punctual_lights(const Emitters& emitters, std::unique_ptr<LightStrategy> triangles,
+                                                    std::string name) {
+  const bool any = triangles != nullptr;
+  std::unique_ptr<PointDraw> point;
+  if (any)
+    point = std::make_unique<TrianglesStrategyPoint>(std::move(triangles));
+  else
+    point = std::make_unique<NoTrianglePoint>();
+  return make_chosen_light_strategy(emitters, make_grouped_power_choice(emitters, any), std::move(point),
+                                    std::move(name));
 }
 
 namespace {

@@ -23,7 +23,7 @@ class WeightChoice : public LightChoice {
     emission_changed();
   }
 
-  int words() const override { return 1; }
+  int first_point_word() const override { return 1; }
 
   std::optional<LightPick> pick(const LightRandom& random, const ShadingPoint&) const override {
     const double u = lightsampler::uniform_double(random[0]);
@@ -83,6 +83,58 @@ std::vector<double> powers(const Emitters& emitters) {
   return p;
 }
 
+/// The triangles as one light beside each punctual light, by power: the choice's CDF has the
+/// triangles first, [0, triangles_), then each punctual light.
+class GroupedPowerChoice : public LightChoice {
+ public:
+  GroupedPowerChoice(const Emitters& emitters, bool triangles) : emitters_(emitters), any_triangles_(triangles) {
+    emission_changed();
+  }
+
+  /// Words 6 and 7: no point draw over the triangles reads them.
+  int first_point_word() const override { return 0; }
+
+  std::optional<LightPick> pick(const LightRandom& random, const ShadingPoint&) const override {
+    const double u = uniform53(random, 6);
+    if (u < triangles_) return LightPick{kEveryTriangle, triangles_};
+    const auto light = std::uint32_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
+    if (light >= cdf_.size()) return std::nullopt;
+    const double pmf = punctual_pmf(light);
+    if (!(pmf > 0.0)) return std::nullopt;
+    return LightPick{emitters_.count() + light, pmf};
+  }
+
+  double pmf(std::uint32_t light, const ShadingPoint&) const override {
+    return light < emitters_.count() ? triangles_ : punctual_pmf(light - emitters_.count());
+  }
+
+  void emission_changed() override {
+    double triangles = 0.0;
+    if (any_triangles_)
+      for (std::uint32_t i = 0; i < emitters_.count(); ++i) triangles += emitters_.power(i);
+    const std::uint32_t punctual = emitters_.punctual().count();
+    cdf_.assign(punctual, 0.0);
+    double total = triangles;
+    for (std::uint32_t i = 0; i < punctual; ++i) cdf_[i] = total += emitters_.power(emitters_.count() + i);
+    if (!(total > 0.0)) {  // nothing emits (a dark frame): nothing to pick
+      triangles_ = 0.0;
+      cdf_.assign(punctual, 0.0);
+      return;
+    }
+    triangles_ = triangles / total;
+    for (double& c : cdf_) c /= total;
+    if (!cdf_.empty()) cdf_.back() = 1.0;
+  }
+
+ private:
+  double punctual_pmf(std::uint32_t i) const { return cdf_[i] - (i > 0 ? cdf_[i - 1] : triangles_); }
+
+  const Emitters& emitters_;
+  bool any_triangles_;
+  double triangles_ = 0.0;   ///< the triangles' probability
+  std::vector<double> cdf_;  ///< inclusive, per punctual light, after the triangles' share
+};
+
 /// The light tree over the triangles and the point and spot lights; directional lights, which
 /// no box bounds, each with the tree's probability (pbrt-v4's pInfinite).
 class TreeChoice : public LightChoice {
@@ -93,7 +145,7 @@ class TreeChoice : public LightChoice {
       if (emitters.punctual()[i].kind == PunctualLight::Kind::directional) directional_.push_back(i);
   }
 
-  int words() const override { return 2; }
+  int first_point_word() const override { return 2; }
 
   std::optional<LightPick> pick(const LightRandom& random, const ShadingPoint& at) const override {
     double u = uniform53(random, 0);
@@ -156,6 +208,10 @@ std::unique_ptr<LightChoice> make_area_choice(const Emitters& emitters) {
 
 std::unique_ptr<LightChoice> make_power_choice(const Emitters& emitters) {
   return std::make_unique<WeightChoice>(emitters, powers);
+}
+
+std::unique_ptr<LightChoice> make_grouped_power_choice(const Emitters& emitters, bool triangles) {
+  return std::make_unique<GroupedPowerChoice>(emitters, triangles);
 }
 
 std::unique_ptr<LightChoice> make_tree_choice(const Emitters& emitters, TreePower power,

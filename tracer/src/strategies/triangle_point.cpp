@@ -12,14 +12,30 @@
 #include "strategies/unit_interval.h"
 
 namespace tracer {
+
+std::optional<LightLiSample> TrianglePoint::sample(const LightPick& pick, const LightRandom& random, int first,
+                                                   const ShadingPoint& at) const {
+  const std::optional<PointOnLight> p = draw(pick.light, random, first, at);
+  if (!p) return std::nullopt;
+  // A point seen edge-on, or in a texel without density, carries nothing; pdf() gives it zero too.
+  const auto density = float(pick.pmf * p->density);
+  if (!(density > 0.0f)) return std::nullopt;
+  const Light light = emitters_.light(pick.light);
+  return light.sample_li(light.point(p->b.b1, p->b.b2, density, density), at);
+}
+
+float TrianglePoint::pdf(double pmf, std::uint32_t light, float b1, float b2, const ShadingPoint& from) const {
+  return float(pmf * density(light, b1, b2, from));
+}
+
 namespace {
 
 class AreaPoint : public TrianglePoint {
  public:
-  explicit AreaPoint(const Emitters& emitters) : emitters_(emitters) {}
+  explicit AreaPoint(const Emitters& emitters) : TrianglePoint(emitters) {}
 
-  std::optional<PointOnLight> sample(std::uint32_t light, const LightRandom& random, int first,
-                                     const ShadingPoint&) const override {
+  std::optional<PointOnLight> draw(std::uint32_t light, const LightRandom& random, int first,
+                                   const ShadingPoint&) const override {
     return PointOnLight{lightsampler::triangle_map(lightsampler::uniform_float(random[first]),
                                                    lightsampler::uniform_float(random[first + 1])),
                         1.0 / emitters_.area(light)};
@@ -27,9 +43,6 @@ class AreaPoint : public TrianglePoint {
   double density(std::uint32_t light, float, float, const ShadingPoint&) const override {
     return 1.0 / emitters_.area(light);
   }
-
- private:
-  const Emitters& emitters_;
 };
 
 /// Solid angles, in steradians, between which a triangle is sampled by direction. Below, cos
@@ -43,10 +56,10 @@ constexpr double kMaxSphericalSolidAngle = 6.22;
 
 class SolidAnglePoint : public TrianglePoint {
  public:
-  explicit SolidAnglePoint(const Emitters& emitters) : emitters_(emitters) {}
+  explicit SolidAnglePoint(const Emitters& emitters) : TrianglePoint(emitters) {}
 
-  std::optional<PointOnLight> sample(std::uint32_t light, const LightRandom& random, int first,
-                                     const ShadingPoint& at) const override {
+  std::optional<PointOnLight> draw(std::uint32_t light, const LightRandom& random, int first,
+                                   const ShadingPoint& at) const override {
     const std::array<glm::vec3, 3> v = emitters_.vertices(light);
     const double omega = spherical_solid_angle(v, at.position);
     const float u1 = lightsampler::uniform_float(random[first]), u2 = lightsampler::uniform_float(random[first + 1]);
@@ -89,18 +102,16 @@ class SolidAnglePoint : public TrianglePoint {
     const double cos_light = std::abs(glm::dot(glm::dvec3(emitters_.normal(light)), d)) / std::sqrt(d2);
     return float(cos_light / (d2 * omega));
   }
-
-  const Emitters& emitters_;
 };
 
 class TexelPoint : public TrianglePoint {
  public:
-  explicit TexelPoint(const Emitters& emitters) : emitters_(emitters) { build(); }
+  explicit TexelPoint(const Emitters& emitters) : TrianglePoint(emitters) { build(); }
 
   void emission_changed() override { build(); }
 
-  std::optional<PointOnLight> sample(std::uint32_t light, const LightRandom& random, int first,
-                                     const ShadingPoint&) const override {
+  std::optional<PointOnLight> draw(std::uint32_t light, const LightRandom& random, int first,
+                                   const ShadingPoint&) const override {
     // With image-mean powers a tree may pick a light that emits nothing.
     if (!(table_->light_weight(light) > 0.0)) return std::nullopt;
     const PieceTable::Pick piece = table_->pick_in_light(light, word64(random, first));
@@ -130,7 +141,6 @@ class TexelPoint : public TrianglePoint {
     return float(double(emitters_.density(light, b1, b2)) / table_->light_weight(light));
   }
 
-  const Emitters& emitters_;
   std::optional<PieceTable> table_;
   double build_ms_ = 0.0;
 };

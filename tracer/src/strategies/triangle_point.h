@@ -10,7 +10,7 @@
 
 #include <lightsampler/triangle_map.h>
 
-#include "tracer/light_strategy.h"
+#include "strategies/point_draw.h"
 
 namespace tracer {
 
@@ -19,18 +19,25 @@ struct PointOnLight {
   double density;  ///< per world area, within the light
 };
 
-class TrianglePoint {
+/// A point on the triangle the choice picked, its densities the pick's probability times the
+/// point's density within the triangle.
+class TrianglePoint : public PointDraw {
  public:
-  virtual ~TrianglePoint() = default;
-  /// A point of `light` seen from `at`, read from the words of `random` from `first` on (the
-  /// choice reads those before); none where the light offers nothing there.
-  virtual std::optional<PointOnLight> sample(std::uint32_t light, const LightRandom& random, int first,
-                                             const ShadingPoint& at) const = 0;
-  /// The area density with which sample() draws point (b1, b2) of `light` from `from`.
+  explicit TrianglePoint(const Emitters& emitters) : emitters_(emitters) {}
+
+  std::optional<LightLiSample> sample(const LightPick& pick, const LightRandom& random, int first,
+                                      const ShadingPoint& at) const final;
+  float pdf(double pmf, std::uint32_t light, float b1, float b2, const ShadingPoint& from) const final;
+
+ protected:
+  /// A point of `light` seen from `at`, read from the words of `random` from `first` on; none
+  /// where the light offers nothing there.
+  virtual std::optional<PointOnLight> draw(std::uint32_t light, const LightRandom& random, int first,
+                                           const ShadingPoint& at) const = 0;
+  /// The area density within `light` with which draw() gives point (b1, b2) from `from`.
   virtual double density(std::uint32_t light, float b1, float b2, const ShadingPoint& from) const = 0;
-  /// The emission changed: what was built from it is built again.
-  virtual void emission_changed() {}
-  virtual StrategySetup setup() const { return {}; }
+
+  const Emitters& emitters_;
 };
 
 /// Uniform by area: density 1 / area.
