@@ -20,7 +20,7 @@ from pathlib import Path
 from unittest import mock
 
 TOOLS = None  # set from the command line
-STRATEGIES = ["uniform", "power", "tree", "texel", "tree-texel", "trs", "ris"]  # trs-study's default
+STRATEGIES = ["uniform", "power", "tree", "texel", "tree-texel", "trs", "ris", "restir"]  # trs-study's default
 SOURCE_STUDY = Path(__file__).resolve().parents[2] / "tools" / "trs-study" / "trs-study"
 SUPPORT = Path(__file__).resolve().parents[1] / "support"
 

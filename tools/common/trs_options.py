@@ -6,7 +6,7 @@ import re
 
 # The strategies a study compares: every one trs-render has but auto, which renders as one of
 # them. tests/python/test_trs_render.py checks them against trs_render.STRATEGIES.
-STRATEGIES = ["uniform", "power", "tree", "texel", "tree-texel", "trs", "ris"]
+STRATEGIES = ["uniform", "power", "tree", "texel", "tree-texel", "trs", "ris", "restir"]
 
 
 def frame_range(text):

@@ -46,15 +46,20 @@ std::string joined(const std::vector<std::string>& names) {
   return text;
 }
 
-/// Why --strategy-option's names are not all options of the strategy that draws; none if they are.
+/// Why --strategy-option's names are not all options of the strategy named or of the one that
+/// draws its points; none if they are.
 std::optional<std::string> undeclared_parameter(const tracer::StrategyOptions& options) {
-  const tracer::StrategyDefinition* source = tracer::find_strategy(tracer::source_kind(options));
   std::vector<std::string> declared;
-  if (source)
-    for (const tracer::StrategyParameter& p : source->parameters) declared.push_back(p.name);
+  std::string owners = options.kind;
+  for (const std::string& kind : {options.kind, tracer::source_kind(options)}) {
+    if (const tracer::StrategyDefinition* s = tracer::find_strategy(kind))
+      for (const tracer::StrategyParameter& p : s->parameters)
+        if (std::find(declared.begin(), declared.end(), p.name) == declared.end()) declared.push_back(p.name);
+    if (kind != options.kind) owners += " over " + kind;
+  }
   for (const auto& [name, value] : options.parameters) {
     if (std::find(declared.begin(), declared.end(), name) == declared.end())
-      return "--strategy-option " + name + ": strategy " + tracer::source_kind(options) + " has " +
+      return "--strategy-option " + name + ": strategy " + owners + " has " +
              (declared.empty() ? std::string("no options") : "the options " + joined(declared)) + ", not " + name;
   }
   return std::nullopt;
@@ -228,9 +233,10 @@ struct LightOptions {
       r.strategy.parameters[p.substr(0, equals)] = p.substr(equals + 1);
     }
     if (UsageError error = undeclared_parameter(r.strategy)) return error;
-    const bool resamples = strategy == "ris" || strategy == tracer::kAutoStrategy;
+    const tracer::StrategyDefinition* definition = tracer::find_strategy(strategy);
+    const bool resamples = (definition && definition->resamples) || strategy == tracer::kAutoStrategy;
     if (UsageError error = misplaced(app, {"--candidates", "--candidates-from"}, resamples,
-                                     "belongs to --strategy ris (and auto, where it chooses ris)"))
+                                     "belongs to --strategy ris and restir (and auto, where it chooses ris)"))
       return error;
     r.strategy.tree = {named(tracer::kTreeImportanceNames, tree_importance), named(tracer::kTreePowerNames, tree_power)};
     if (UsageError error = misplaced(app, {"--tree-importance", "--tree-power"}, tracer::picks_by_tree(r.strategy),

@@ -67,6 +67,21 @@ SamplerTimes sampler_times(const tracer::RenderResult& result) {
 
 double per_second(double count, double seconds) { return seconds > 0.0 ? count / seconds : 0.0; }
 
+/// restir's reuse per pass, milliseconds, mean; none for the other strategies.
+std::optional<double> reuse_ms(const tracer::RenderResult& result) {
+  if (result.reuse_ms.empty()) return std::nullopt;
+  double sum = 0.0;
+  for (double ms : result.reuse_ms) sum += ms;
+  return sum / double(result.reuse_ms.size());
+}
+
+/// A pass's time, milliseconds, less its light sampler's, light records' and reuse's: tracing.
+double tracing_ms(const tracer::RenderResult& result, const SamplerTimes& sampler) {
+  if (result.passes == 0) return 0.0;
+  return 1000.0 * result.render_seconds / result.passes - sampler.mean_ms - sampler.records_ms -
+         reuse_ms(result).value_or(0.0);
+}
+
 /// The strategy's structure over the lights; null for strategies without one.
 nlohmann::json light_structure(const tracer::StrategySetup& setup) {
   if (setup.bytes == 0) return nullptr;
@@ -224,6 +239,8 @@ nlohmann::json current_stats_json(const RenderOptions& options, const tracer::Re
       {"sampler_ms", ms},
       {"sampler_stages_ms", stages},
       {"light_records_ms_per_pass", sampler.records_ms},
+      {"reuse_ms_per_pass", reuse_ms(result) ? nlohmann::json(*reuse_ms(result)) : nlohmann::json()},
+      {"tracing_ms_per_pass", tracing_ms(result, sampler)},
       {"lights_per_pass", sampler.mean_lights},
       {"acceptance_rate", sampler.acceptance},
       {"exhausted_lights", sampler.exhausted},
@@ -312,6 +329,11 @@ void print_summary(std::ostream& out, const std::filesystem::path& image, const 
       out << line;
     }
     std::snprintf(line, sizeof line, "    light records: %.2f ms per pass\n", sampler.records_ms);
+    out << line;
+  }
+  if (const std::optional<double> reuse = reuse_ms(result)) {
+    std::snprintf(line, sizeof line, "  reuse (restir's reservoirs): %.2f ms per pass, tracing %.2f ms\n", *reuse,
+                  tracing_ms(result, sampler));
     out << line;
   }
   std::snprintf(line, sizeof line,

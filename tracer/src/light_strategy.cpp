@@ -18,7 +18,8 @@ const StrategyDefinition& definition(const std::string& name) {
 }  // namespace
 
 const std::string& source_kind(const StrategyOptions& options) {
-  return options.kind == "ris" ? options.candidates_from : options.kind;
+  const StrategyDefinition* named = find_strategy(options.kind);
+  return named && named->resamples ? options.candidates_from : options.kind;
 }
 
 bool picks_by_tree(const StrategyOptions& options) {

@@ -53,10 +53,15 @@ const Volume* medium_along(const Material& material, const glm::vec3& geometric_
 /// Whether `wi` and `wo` are on the sides of the surface that the shading normal says: the same
 /// for a reflection, opposite for a transmission. Shading normals can send a direction through the
 /// geometric surface (or keep one from crossing it); such directions carry nothing.
-bool consistent_sides(const SurfacePoint& point, const glm::vec3& wo, const glm::vec3& wi) {
-  const float geometric = glm::dot(wi, point.geometric_normal) * glm::dot(wo, point.geometric_normal);
-  const float shading = glm::dot(wi, point.shading_normal) * glm::dot(wo, point.shading_normal);
+bool consistent_sides(const glm::vec3& geometric_normal, const glm::vec3& shading_normal, const glm::vec3& wo,
+                      const glm::vec3& wi) {
+  const float geometric = glm::dot(wi, geometric_normal) * glm::dot(wo, geometric_normal);
+  const float shading = glm::dot(wi, shading_normal) * glm::dot(wo, shading_normal);
   return geometric != 0.0f && (geometric > 0.0f) == (shading > 0.0f);
+}
+
+bool consistent_sides(const SurfacePoint& point, const glm::vec3& wo, const glm::vec3& wi) {
+  return consistent_sides(point.geometric_normal, point.shading_normal, wo, wi);
 }
 
 }  // namespace
@@ -71,6 +76,12 @@ struct PathTracer::Vertex {
   ShadingPoint shading_point() const { return {point.position, point.shading_normal}; }
 };
 
+/// A light sample seen from a shading point: what it would bring if nothing blocked it.
+struct PathTracer::Connection {
+  LightLiSample light;
+  glm::vec3 unshadowed;  ///< f Li / (solid-angle density of the light sample), no MIS weight
+};
+
 PathTracer::PathTracer(const Scene& scene, const Geometry& geometry, const Emitters& emitters,
                        const LightStrategy& strategy, unsigned max_depth)
     : scene_(scene), geometry_(geometry), emitters_(emitters), strategy_(strategy), max_depth_(max_depth) {
@@ -79,7 +90,8 @@ PathTracer::PathTracer(const Scene& scene, const Geometry& geometry, const Emitt
                       pass_through_materials_.end();
 }
 
-PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const {
+PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& rays,
+                                  const std::optional<LightLiSample>* first_light) const {
   PathEstimate out;
   glm::vec3& sum = out.radiance;
   glm::vec3 throughput(1.0f);
@@ -107,7 +119,13 @@ PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& ra
     const Bsdf bsdf(surface_params(scene_, material, vertex.point), vertex.point.shading_normal);
     std::optional<BsdfSample> s;
     if (depth < max_depth_) {
-      sum += throughput * light_sample(vertex, bsdf, random, rays);
+      if (first_light && depth == 0 && crossings == 0) {
+        if (*first_light)
+          if (const std::optional<Connection> c = connect(vertex, bsdf, **first_light))
+            sum += throughput * shade(vertex, bsdf, *c, 1.0f, rays);
+      } else {
+        sum += throughput * light_sample(vertex, bsdf, random, rays);
+      }
       const auto u = random.floats();
       s = bsdf.sample(vertex.wo, {u[0], u[1], u[2]});
     } else if (const std::optional<PassThrough> through = bsdf.pass_through(vertex.wo)) {
@@ -188,12 +206,6 @@ std::optional<PathTracer::Visibility> PathTracer::visibility(glm::vec3 origin, g
   }
 }
 
-/// A light sample seen from a shading point: what it would bring if nothing blocked it.
-struct PathTracer::Connection {
-  LightLiSample light;
-  glm::vec3 unshadowed;  ///< f Li / (solid-angle density of the light sample), no MIS weight
-};
-
 std::optional<PathTracer::Connection> PathTracer::connect(const Vertex& vertex, const Bsdf& bsdf,
                                                           const LightLiSample& s) const {
   if (is_black(s.li) || !(s.pdf > 0.0f)) return std::nullopt;
@@ -217,7 +229,11 @@ glm::vec3 PathTracer::light_sample(const Vertex& vertex, const Bsdf& bsdf, PathR
   const std::optional<Resampled<Connection>> chosen = resample<Connection>(
       strategy_, random, vertex.shading_point(), [&](const LightLiSample& s) { return connect(vertex, bsdf, s); });
   if (!chosen) return glm::vec3(0.0f);
-  const Connection& kept = chosen->kept;
+  return shade(vertex, bsdf, chosen->kept, chosen->scale, rays);
+}
+
+glm::vec3 PathTracer::shade(const Vertex& vertex, const Bsdf& bsdf, const Connection& kept, float scale,
+                            std::uint64_t& rays) const {
   const LightLiSample& light = kept.light;
   const glm::vec3& position = vertex.point.position;
   const glm::vec3& ng = vertex.point.geometric_normal;
@@ -238,12 +254,30 @@ glm::vec3 PathTracer::light_sample(const Vertex& vertex, const Bsdf& bsdf, PathR
   const std::optional<Visibility> seen =
       visibility(origin, light.distant() ? light.wi : (target - origin) / glm::length(target - origin), length, rays);
   if (!seen) return glm::vec3(0.0f);
-  glm::vec3 contribution = kept.unshadowed * seen->transmittance * chosen->scale;
+  glm::vec3 contribution = kept.unshadowed * seen->transmittance * scale;
   if (const Volume* medium = medium_along(scene_.materials[vertex.point.material], ng, light.wi))
     contribution *= medium->transmittance(light.distance);
   // No BSDF sample finds a delta light: its sample takes the whole weight.
   if (light.delta) return contribution;
   return contribution * power_heuristic(light.mis_pdf, bsdf.pdf(vertex.wo, light.wi) * seen->probability);
+}
+
+std::optional<PrimaryVertex> PathTracer::primary_vertex(const Ray& ray, std::uint64_t& rays) const {
+  if (max_depth_ == 0) return std::nullopt;
+  const std::optional<Hit> hit = geometry_.intersect(ray, kInfinity);
+  ++rays;
+  if (!hit) return std::nullopt;
+  const SurfacePoint point = surface_point(scene_, *hit);
+  return PrimaryVertex{{point.position, point.shading_normal},
+                       point.geometric_normal,
+                       -ray.direction,
+                       hit->distance,
+                       Bsdf(surface_params(scene_, scene_.materials[point.material], point), point.shading_normal)};
+}
+
+glm::vec3 PathTracer::unshadowed(const PrimaryVertex& v, const LightLiSample& s) const {
+  if (is_black(s.li) || !consistent_sides(v.geometric_normal, v.at.normal, v.wo, s.wi)) return glm::vec3(0.0f);
+  return v.bsdf.eval(v.wo, s.wi) * s.li;
 }
 
 }  // namespace tracer

@@ -18,6 +18,7 @@
 #include "tracer/geometry.h"
 #include "tracer/path_tracer.h"
 #include "tracer/strategy_registry.h"
+#include "reuse.h"
 
 namespace tracer {
 namespace {
@@ -94,6 +95,20 @@ Emitters& lit(Emitters& emitters, const Scene& scene) {
   return emitters;
 }
 
+/// Calls `f(x, y)` for every pixel, in 8 x 8 tiles over the threads; stops early on `cancel`.
+template <class F>
+void for_each_pixel(const RenderSettings& settings, const std::atomic<bool>& cancel, F&& f) {
+  tbb::parallel_for(tbb::blocked_range2d<unsigned>(0, settings.height, 8, 0, settings.width, 8),
+                    [&](const tbb::blocked_range2d<unsigned>& tile) {
+                      if (cancel) return;
+                      for (unsigned y = tile.rows().begin(); y != tile.rows().end(); ++y)
+                        for (unsigned x = tile.cols().begin(); x != tile.cols().end(); ++x) f(x, y);
+                    });
+}
+
+/// The streams of restir's reservoirs and of its choice of neighbours, apart from the paths'.
+constexpr std::uint64_t kGatherStream = 0x676174686572ull, kSpatialStream = 0x7370617469616cull;
+
 }  // namespace
 
 struct Renderer::State {
@@ -111,11 +126,15 @@ struct Renderer::State {
   std::unique_ptr<LightStrategy> strategy;
   Clock::time_point strategy_built = Clock::now();
   PinholeCamera camera;
+  PathTracer tracer;
+  /// restir's reservoirs; none for the other strategies.
+  std::optional<Reuse> reuse;
   double first_pass_seconds = 0.0;  ///< of the passes of this animation frame
   /// The passes rendered so far of this animation frame; render() starts it again.
   struct Sums {
     Accumulator pixels;
     std::vector<LightPass> light_passes;
+    std::vector<double> reuse_ms;
     unsigned passes = 0;
     double seconds = 0.0;
     std::uint64_t rays = 0;
@@ -131,7 +150,11 @@ struct Renderer::State {
         emitters(s, sampler_options(r), f, animation_seconds(f, r.fps)),
         choice(choose_strategy(lit(emitters, s), r.strategy)),
         strategy(make_light_strategy(emitters, choice.options)),
-        camera(scene_camera(s), r.width, r.height) {}
+        camera(scene_camera(s), r.width, r.height),
+        tracer(s, geometry, emitters, *strategy, r.max_depth) {
+    if (const ReuseOptions* options = reuse_of(*strategy))
+      reuse.emplace(tracer, emitters, *strategy, *options, r.width, r.height);
+  }
 };
 
 Renderer::Renderer(const Scene& scene, const RenderSettings& settings, std::int64_t frame) {
@@ -179,10 +202,15 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   if (settings.threads > 0)
     limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
   const std::size_t pixels = std::size_t(settings.width) * settings.height;
-  const PathTracer tracer(s.scene, s.geometry, s.emitters, *s.strategy, settings.max_depth);
+  const PathTracer& tracer = s.tracer;
   const std::uint64_t frame_seed = settings.seed ^ lightsampler::mix64(std::uint64_t(s.frame));
   const lightsampler::PhiloxKey key = path_key(frame_seed);
-  if (!s.sums) s.sums.emplace(State::Sums{Accumulator(pixels), {}, 0, 0.0, 0, 0});
+  const lightsampler::PhiloxKey gather_key = path_key(frame_seed ^ kGatherStream);
+  const lightsampler::PhiloxKey spatial_key = path_key(frame_seed ^ kSpatialStream);
+  if (!s.sums) {
+    s.sums.emplace(State::Sums{Accumulator(pixels), {}, {}, 0, 0.0, 0, 0});
+    if (s.reuse) s.reuse->reset();
+  }
   State::Sums& sums = *s.sums;
 
   std::vector<PathEstimate> pass(pixels);
@@ -199,27 +227,40 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
     // The light sets of animation frames apart as their paths are: frame 0's are a still's.
     const auto pass_start = Clock::now();
     s.strategy->begin_pass(pass_seed(settings.seed, std::uint64_t(s.frame) << 32 | f));
-    tbb::parallel_for(
-        tbb::blocked_range2d<unsigned>(0, settings.height, 8, 0, settings.width, 8),
-        [&](const tbb::blocked_range2d<unsigned>& tile) {
-          if (cancel) return;
-          std::uint64_t& tile_rays = rays.local();
-          for (unsigned y = tile.rows().begin(); y != tile.rows().end(); ++y) {
-            for (unsigned x = tile.cols().begin(); x != tile.cols().end(); ++x) {
-              const std::uint32_t pixel = y * settings.width + x;
-              PathRandom random(key, pixel, f);
-              const auto jitter = random.floats();
-              const Ray ray = s.camera.ray(float(x) + jitter[0], float(y) + jitter[1]);
-              PathEstimate e = tracer.radiance(ray, random, tile_rays);
-              const glm::vec3& l = e.radiance;
-              if (!std::isfinite(l.r + l.g + l.b)) {
-                ++invalid.local();
-                e.radiance = glm::vec3(0.0f);
-              }
-              pass[pixel] = e;
-            }
-          }
-        });
+    /// Pixel (x, y)'s camera ray this pass, from the first words of its path's stream.
+    const auto camera_ray = [&](unsigned x, unsigned y, PathRandom& random) {
+      const auto jitter = random.floats();
+      return s.camera.ray(float(x) + jitter[0], float(y) + jitter[1]);
+    };
+    if (s.reuse) {
+      const auto reuse_start = Clock::now();
+      s.reuse->begin_pass();
+      for_each_pixel(settings, cancel, [&](unsigned x, unsigned y) {
+        const std::uint32_t pixel = y * settings.width + x;
+        PathRandom path(key, pixel, f), random(gather_key, pixel, f);
+        s.reuse->gather(pixel, camera_ray(x, y, path), random, rays.local());
+      });
+      for_each_pixel(settings, cancel, [&](unsigned x, unsigned y) {
+        const std::uint32_t pixel = y * settings.width + x;
+        PathRandom random(spatial_key, pixel, f);
+        s.reuse->spatial(pixel, random);
+      });
+      sums.reuse_ms.push_back(1000.0 * seconds_since(reuse_start));
+    }
+    for_each_pixel(settings, cancel, [&](unsigned x, unsigned y) {
+      const std::uint32_t pixel = y * settings.width + x;
+      PathRandom random(key, pixel, f);
+      const Ray ray = camera_ray(x, y, random);
+      std::optional<LightLiSample> first_light;
+      if (s.reuse) first_light = s.reuse->light(pixel);
+      PathEstimate e = tracer.radiance(ray, random, rays.local(), s.reuse ? &first_light : nullptr);
+      const glm::vec3& l = e.radiance;
+      if (!std::isfinite(l.r + l.g + l.b)) {
+        ++invalid.local();
+        e.radiance = glm::vec3(0.0f);
+      }
+      pass[pixel] = e;
+    });
     if (cancel) {  // a partial pass would bias the average
       cancelled = true;
       break;
@@ -255,6 +296,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   result.light_structure = s.strategy->setup();
   result.passes = sums.passes;
   result.light_passes = sums.light_passes;
+  result.reuse_ms = sums.reuse_ms;
   result.render_seconds = sums.seconds;
   result.interrupted = cancelled;
   result.paths = std::uint64_t(result.passes) * pixels;

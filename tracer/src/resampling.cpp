@@ -2,20 +2,23 @@
 
 #include <stdexcept>
 
+#include "reuse.h"
 #include "strategies/strategies.h"
 #include "tracer/strategy_registry.h"
 
 namespace tracer {
 namespace {
 
-/// As a strategy, `ris` is its source under another name, with its number of candidates.
+/// As a strategy, `ris` is its source under another name, with its number of candidates; so is
+/// `restir`, with the reuse the renderer gives it (reuse.h).
 class ResampledStrategy : public LightStrategy {
  public:
-  ResampledStrategy(std::unique_ptr<LightStrategy> source, unsigned candidates)
-      : source_(std::move(source)), candidates_(candidates) {
-    if (candidates_ == 0) throw std::invalid_argument("ris needs a candidate");
+  ResampledStrategy(std::unique_ptr<LightStrategy> source, unsigned candidates, std::optional<ReuseOptions> reuse)
+      : source_(std::move(source)), candidates_(candidates), reuse_(reuse) {
+    if (candidates_ == 0) throw std::invalid_argument(name() + " needs a candidate");
   }
-  std::string name() const override { return "ris"; }
+  std::string name() const override { return reuse_ ? "restir" : "ris"; }
+  const ReuseOptions* reuse() const { return reuse_ ? &*reuse_ : nullptr; }
   unsigned candidates() const override { return candidates_; }
   void begin_pass(std::uint64_t seed) override { source_->begin_pass(seed); }
   void emission_changed() override { source_->emission_changed(); }
@@ -33,23 +36,37 @@ class ResampledStrategy : public LightStrategy {
  private:
   std::unique_ptr<LightStrategy> source_;
   unsigned candidates_;
+  std::optional<ReuseOptions> reuse_;
 };
+
+/// The strategy `c.options.candidates_from` names, over every light, resampled.
+std::unique_ptr<LightStrategy> resampled(const StrategyContext& c, std::optional<ReuseOptions> reuse) {
+  const std::string& source = c.options.candidates_from;
+  if (!resamplable(source))
+    throw std::invalid_argument((reuse ? "restir" : "ris") + std::string(" cannot draw its candidates from ") + source);
+  return std::make_unique<ResampledStrategy>(make_strategy_over_every_light(c.emitters, source, c.options),
+                                             c.options.candidates, reuse);
+}
 
 TRS_REGISTER_STRATEGY({.name = "ris",
                        .summary = "another strategy's points resampled per shading point",
-                       .make = [](const StrategyContext& c) -> std::unique_ptr<LightStrategy> {
-                         const std::string& source = c.options.candidates_from;
-                         if (!resamplable(source))
-                           throw std::invalid_argument("ris cannot draw its candidates from " + source);
-                         return make_resampled(make_strategy_over_every_light(c.emitters, source, c.options),
-                                               c.options.candidates);
-                       },
+                       .make = [](const StrategyContext& c) { return resampled(c, std::nullopt); },
                        .resamples = true});
+TRS_REGISTER_STRATEGY({.name = "restir",
+                       .summary = "ris's reservoirs reused across passes and neighbouring pixels, unbiased",
+                       .make = [](const StrategyContext& c) { return resampled(c, reuse_options(c.options.parameters)); },
+                       .resamples = true,
+                       .parameters = {{"neighbours", "reservoirs of neighbouring pixels reused per pass; 3"},
+                                      {"radius", "how far those neighbours are, in pixels; 16"},
+                                      {"m-cap", "the most a pixel's earlier passes count for, in passes' candidates; 20"},
+                                      {"temporal", "on or off: reuse each pixel's reservoir of the pass before; on"},
+                                      {"weights", "balance (unbiased) or uniform (1/M: cheaper, biased); balance"}}});
 
 }  // namespace
 
-std::unique_ptr<LightStrategy> make_resampled(std::unique_ptr<LightStrategy> source, unsigned candidates) {
-  return std::make_unique<ResampledStrategy>(std::move(source), candidates);
+const ReuseOptions* reuse_of(const LightStrategy& strategy) {
+  const auto* resampled = dynamic_cast<const ResampledStrategy*>(&strategy);
+  return resampled ? resampled->reuse() : nullptr;
 }
 
 }  // namespace tracer

@@ -1,7 +1,7 @@
 #pragma once
 // `ris`, in one place: resampled importance sampling (Talbot et al. 2005) of next-event
-// connections over any strategy's light samples. The strategy (make_resampled) is its source
-// under the name `ris`, with its number of candidates; resample() draws that many candidates for
+// connections over any strategy's light samples. The strategy `ris` is its source under another
+// name, with its number of candidates (`restir` too, reused by reuse.h); resample() draws that many candidates for
 // a shading point, weighs each by the luminance of what it would bring unshadowed (target over
 // source density), keeps one in proportion to its weight, and gives the factor its estimate is
 // scaled by, the weights' mean over its own weight, which makes it unbiased for any number of
@@ -19,9 +19,6 @@
 #include "tracer/path_random.h"
 
 namespace tracer {
-
-/// `source`'s points resampled from `candidates` per connection (at least one).
-std::unique_ptr<LightStrategy> make_resampled(std::unique_ptr<LightStrategy> source, unsigned candidates);
 
 template <class Connection>
 struct Resampled {

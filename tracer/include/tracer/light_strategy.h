@@ -124,7 +124,8 @@ struct StrategyOptions {
   std::map<std::string, std::string> parameters;
 };
 
-/// The strategy that draws the points: the one named, or for `ris` the one its candidates come from.
+/// The strategy that draws the points: the one named, or for `ris` and `restir` the one their
+/// candidates come from.
 const std::string& source_kind(const StrategyOptions& options);
 
 /// Whether the strategy picks lights with the light tree (and reads StrategyOptions::tree).

@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+
 #include <glm/glm.hpp>
 
 #include "tracer/bsdf.h"
@@ -32,6 +33,16 @@ struct PathEstimate {
   bool sees_emitter = false;  ///< the camera ray's first hit is an emitter
 };
 
+/// The first surface a camera ray meets, where `restir` keeps its pixel's reservoir: the point
+/// light samples are seen from, and the BSDF that weighs them.
+struct PrimaryVertex {
+  ShadingPoint at;
+  glm::vec3 geometric_normal;
+  glm::vec3 wo;     ///< unit, towards the camera
+  float distance;   ///< from the camera
+  Bsdf bsdf;        ///< copy it to query it from another pixel's thread (Bsdf keeps a cache)
+};
+
 class PathTracer {
  public:
   /// `max_depth`: most surface interactions a path scatters at; 0 shows emitters only, 1 is
@@ -39,8 +50,19 @@ class PathTracer {
   PathTracer(const Scene& scene, const Geometry& geometry, const Emitters& emitters,
              const LightStrategy& strategy, unsigned max_depth);
 
-  /// Radiance arriving along `ray` (one estimate); adds the rays it traces to `rays`.
-  PathEstimate radiance(Ray ray, PathRandom& random, std::uint64_t& rays) const;
+  /// Radiance arriving along `ray` (one estimate); adds the rays it traces to `rays`. With
+  /// `first_light`, the first surface the ray meets is lit by that light sample (none: by
+  /// nothing) instead of by the strategy's: `restir`'s reservoir, whose `pdf` is the reciprocal
+  /// of its contribution weight in solid angle.
+  PathEstimate radiance(Ray ray, PathRandom& random, std::uint64_t& rays,
+                        const std::optional<LightLiSample>* first_light = nullptr) const;
+
+  /// The first surface `ray` meets, where radiance() would take a light sample (none: it meets
+  /// nothing, or max_depth is 0). Adds the ray to `rays`.
+  std::optional<PrimaryVertex> primary_vertex(const Ray& ray, std::uint64_t& rays) const;
+  /// What light sample `s` brings to `v` unshadowed, f Li (its density left out); zero where it
+  /// brings nothing.
+  glm::vec3 unshadowed(const PrimaryVertex& v, const LightLiSample& s) const;
 
  private:
   struct Vertex;
@@ -56,6 +78,9 @@ class PathTracer {
                                        std::uint64_t& rays) const;
   glm::vec3 light_sample(const Vertex& vertex, const Bsdf& bsdf, PathRandom& random,
                          std::uint64_t& rays) const;
+  /// What `kept` brings through the shadow ray, times `scale`, weighed against BSDF sampling.
+  glm::vec3 shade(const Vertex& vertex, const Bsdf& bsdf, const Connection& kept, float scale,
+                  std::uint64_t& rays) const;
 
   const Scene& scene_;
   const Geometry& geometry_;

@@ -73,6 +73,9 @@ struct RenderResult {
   /// noise comes from the pixel footprint over an emitter, whatever the light strategy.
   std::vector<float> emitter_fraction;
   std::vector<LightPass> light_passes;  ///< per pass
+  /// restir: the reuse's time per pass, milliseconds (its reservoirs gathered, temporal and
+  /// spatial); empty for the other strategies.
+  std::vector<double> reuse_ms;
   StrategySetup light_structure;      ///< what the strategy built over the lights (zeros: nothing)
   double setup_seconds = 0.0;         ///< scene acceleration structure, emitters, strategy
   SetupTimes setup;                   ///< setup_seconds by part

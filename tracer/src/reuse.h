@@ -1,0 +1,99 @@
+#pragma once
+// `restir`: spatiotemporal reuse of resampled light samples at the first surface of each camera
+// ray (Bitterli et al. 2020, "Spatiotemporal reservoir resampling for real-time ray tracing with
+// dynamic direct lighting"), made unbiased by generalized RIS (Lin et al. 2022, "Generalized
+// Resampled Importance Sampling"). Every pass, each pixel:
+// 1. resamples its strategy's candidates (ris's) into a reservoir: one light sample y and its
+//    unbiased contribution weight W, for the target p(y) = luminance of f Li G, unshadowed (in
+//    area measure on the triangles, counting measure on the punctual lights);
+// 2. combines it with its own reservoir of the pass before (temporal; the camera is fixed
+//    within a frame), counted at most as `m_cap` passes' candidates;
+// 3. combines that with the step-2 reservoirs of a few neighbours within a radius, each rejected
+//    where its surface's normal or distance differs too much (spatial).
+// Each combination weighs reservoir i's sample with the generalized balance heuristic,
+// m_i(y) = M_i p_i(y) / sum_j M_j p_j(y), p_j the target at reservoir j's own surface: the
+// weights sum to one wherever a reservoir can hold y, so the combined W stays an unbiased
+// contribution weight. The kept sample is shaded with its shadow ray (visibility is never
+// reused) and weighed against BSDF sampling with the strategy's own density, as `ris`'s are.
+// Deeper vertices keep `ris`. A new animation frame, or a new render, starts without history.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tracer/light_strategy.h"
+#include "tracer/path_random.h"
+#include "tracer/path_tracer.h"
+
+namespace tracer {
+
+struct ReuseOptions {
+  unsigned neighbours = 3;  ///< spatial: neighbours' reservoirs combined per pass; 0: no spatial reuse
+  float radius = 16.0f;     ///< spatial: how far the neighbours are, in pixels
+  /// temporal: the most a reservoir of earlier passes counts for, in passes' candidates (its M cap)
+  float m_cap = 20.0f;
+  bool temporal = true;     ///< reuse each pixel's reservoir of the pass before
+  /// How a combination weighs its reservoirs' samples: the generalized balance heuristic
+  /// (unbiased), or in proportion to their M alone (Bitterli et al. 2020's 1/M weights: cheaper,
+  /// and biased, darker, where neighbouring surfaces see different lights).
+  enum class Weights { balance, uniform } weights = Weights::balance;
+};
+
+/// restir's options from --strategy-option NAME=VALUE (neighbours, radius, m-cap, temporal,
+/// weights).
+/// Throws std::invalid_argument naming the option and the value it cannot take.
+ReuseOptions reuse_options(const std::map<std::string, std::string>& parameters);
+
+/// The reuse `strategy` asks for: restir's options; none for the other strategies.
+const ReuseOptions* reuse_of(const LightStrategy& strategy);
+
+/// The reservoirs of a render's pixels, and the passes' reuse.
+class Reuse {
+ public:
+  Reuse(const PathTracer& tracer, const Emitters& emitters, const LightStrategy& strategy, const ReuseOptions& options,
+        unsigned width, unsigned height);
+
+  /// Forgets every reservoir: the next pass has no pass before it.
+  void reset();
+  /// Starts a pass: this pass's reservoirs become the pass before's.
+  void begin_pass();
+  /// Step 1 and 2 for `pixel`, whose camera ray is `ray`. Adds the rays it traces to `rays`.
+  void gather(std::uint32_t pixel, const Ray& ray, PathRandom& random, std::uint64_t& rays);
+  /// Step 3 for `pixel`, once every pixel gathered.
+  void spatial(std::uint32_t pixel, PathRandom& random);
+  /// The light sample the first surface of `pixel`'s camera ray is lit by (PathTracer::radiance's
+  /// `first_light`); none where the reservoir holds nothing.
+  std::optional<LightLiSample> light(std::uint32_t pixel) const;
+
+  /// One sample of a reservoir: a point of a triangle, or a punctual light (point.light).
+  struct Sample {
+    LightPoint point;  ///< its densities 1: seen from a surface, its pdf is 1 / G
+    bool punctual = false;
+  };
+  struct Reservoir {
+    std::optional<Sample> y;
+    float target = 0.0f;  ///< p(y) at the reservoir's own surface
+    float W = 0.0f;       ///< unbiased contribution weight
+    float M = 0.0f;       ///< candidates it stands for
+  };
+
+ private:
+  struct Input;
+  Reservoir combine(const std::vector<Input>& inputs, PathRandom& random) const;
+  /// Input i's weight for its own sample.
+  float balance(const std::vector<Input>& inputs, std::size_t i) const;
+  float target(const PrimaryVertex& v, const Sample& y) const;
+
+  const PathTracer& tracer_;
+  const Emitters& emitters_;
+  const LightStrategy& strategy_;
+  ReuseOptions options_;
+  unsigned width_, height_;
+  // Per pixel: its first surface and reservoirs, this pass's and the pass before's.
+  std::vector<std::optional<PrimaryVertex>> vertices_, previous_vertices_;
+  std::vector<Reservoir> temporal_, final_, previous_final_;
+};
+
+}  // namespace tracer
