@@ -59,7 +59,7 @@ TRS_REGISTER_STRATEGY({.name = "restir",
                        .parameters = {{"neighbours", "reservoirs of neighbouring pixels reused per pass; 3"},
                                       {"radius", "how far those neighbours are, in pixels; 16"},
                                       {"m-cap", "the most a pixel's earlier passes count for, in passes' candidates; 20"},
-                                      {"temporal", "on or off: reuse each pixel's reservoir of the pass before; on"},
+                                      {"temporal", "on or off: reuse each pixel's reservoir of the pass before; off"},
                                       {"weights", "balance (unbiased) or uniform (1/M: cheaper, biased); balance"}}});
 
 }  // namespace

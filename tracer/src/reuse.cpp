@@ -92,9 +92,7 @@ float Reuse::target(const PrimaryVertex& v, const Sample& y) const {
   const Light light = emitters_.light(y.point.light);
   const std::optional<LightLiSample> s = y.punctual ? light.sample_li(1.0, v.at) : light.sample_li(y.point, v.at);
   if (!s || !(s->pdf > 0.0f)) return 0.0f;
-  // A neighbour's BSDF may be queried from several threads: each its own copy.
-  PrimaryVertex copy = v;
-  return luminance(tracer_.unshadowed(copy, *s)) / s->pdf;
+  return luminance(tracer_.unshadowed(v, *s)) / s->pdf;
 }
 
 void Reuse::gather(std::uint32_t pixel, const Ray& ray, PathRandom& random, std::uint64_t& rays) {
@@ -144,7 +142,9 @@ void Reuse::spatial(std::uint32_t pixel, PathRandom& random) {
     final_[pixel] = temporal_[pixel];
     return;
   }
-  std::vector<Input> inputs{{&temporal_[pixel], &*v, temporal_[pixel].M}};
+  // Other pixels' threads read these surfaces too, and a Bsdf keeps a cache: each its own copy.
+  std::vector<PrimaryVertex> surfaces{*v};
+  std::vector<const Reservoir*> reservoirs{&temporal_[pixel]};
   const int x = int(pixel % width_), y = int(pixel / width_);
   for (unsigned k = 0; k < options_.neighbours; ++k) {
     const auto u = random.floats();
@@ -156,8 +156,11 @@ void Reuse::spatial(std::uint32_t pixel, PathRandom& random) {
     if (!w || glm::dot(w->at.normal, v->at.normal) < kNormalCosine ||
         std::abs(w->distance - v->distance) > kDistanceFraction * v->distance)
       continue;
-    inputs.push_back({&temporal_[q], &*w, temporal_[q].M});
+    surfaces.push_back(*w);
+    reservoirs.push_back(&temporal_[q]);
   }
+  std::vector<Input> inputs;
+  for (std::size_t i = 0; i < surfaces.size(); ++i) inputs.push_back({reservoirs[i], &surfaces[i], reservoirs[i]->M});
   final_[pixel] = combine(inputs, random);
 }
 

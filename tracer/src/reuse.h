@@ -6,8 +6,8 @@
 // 1. resamples its strategy's candidates (ris's) into a reservoir: one light sample y and its
 //    unbiased contribution weight W, for the target p(y) = luminance of f Li G, unshadowed (in
 //    area measure on the triangles, counting measure on the punctual lights);
-// 2. combines it with its own reservoir of the pass before (temporal; the camera is fixed
-//    within a frame), counted at most as `m_cap` passes' candidates;
+// 2. where asked, combines it with its own reservoir of the pass before (temporal; the camera is
+//    fixed within a frame), counted at most as `m_cap` passes' candidates;
 // 3. combines that with the step-2 reservoirs of a few neighbours within a radius, each rejected
 //    where its surface's normal or distance differs too much (spatial).
 // Each combination weighs reservoir i's sample with the generalized balance heuristic,
@@ -34,7 +34,10 @@ struct ReuseOptions {
   float radius = 16.0f;     ///< spatial: how far the neighbours are, in pixels
   /// temporal: the most a reservoir of earlier passes counts for, in passes' candidates (its M cap)
   float m_cap = 20.0f;
-  bool temporal = true;     ///< reuse each pixel's reservoir of the pass before
+  /// Reuse each pixel's reservoir of the pass before. Off unless asked: the passes of an image
+  /// then share samples, and on the shipped scenes that costs more than the reuse gains
+  /// (docs/noise.md, "Reuse across pixels and passes").
+  bool temporal = false;
   /// How a combination weighs its reservoirs' samples: the generalized balance heuristic
   /// (unbiased), or in proportion to their M alone (Bitterli et al. 2020's 1/M weights: cheaper,
   /// and biased, darker, where neighbouring surfaces see different lights).
