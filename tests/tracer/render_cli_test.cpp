@@ -214,6 +214,25 @@ TEST_F(RenderCliTest, TreeOptions) {
   }
 }
 
+// restir's options by --strategy-option: its reuse timed in the stats; a value it cannot take is
+// refused, naming the option.
+TEST_F(RenderCliTest, RestirOptions) {
+  const RunResult result = run(tiny(kScene, {"--strategy", "restir", "--strategy-option", "temporal=on",
+                                             "--strategy-option", "neighbours=2", "--out", file("restir.exr").string(),
+                                             "--stats", file("restir.json").string()}));
+  ASSERT_EQ(result.status, 0) << result.err;
+  const nlohmann::json stats = read_json(file("restir.json"));
+  EXPECT_EQ(stats["settings"]["strategy"], "restir");
+  EXPECT_GE(stats["reuse_ms_per_pass"].get<double>(), 0.0);
+  EXPECT_GT(stats["tracing_ms_per_pass"].get<double>(), 0.0);
+  for (const std::string& bad : {"radius=0", "neighbours=2.5", "temporal=yes", "weights=none"}) {
+    const RunResult refused = run(tiny(kScene, {"--strategy", "restir", "--strategy-option", bad, "--out",
+                                                file("refused.exr").string()}));
+    EXPECT_NE(refused.status, 0) << bad;
+    EXPECT_NE(refused.err.find(bad.substr(0, bad.find('='))), std::string::npos) << refused.err;
+  }
+}
+
 // A time budget: frames until that much wall time has passed since the start, set-up included;
 // --spp on the command line caps them, a settings file's spp does not.
 TEST_F(RenderCliTest, TimeBudgetRendersUntilItIsSpent) {

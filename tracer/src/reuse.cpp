@@ -1,6 +1,7 @@
 #include "reuse.h"
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 
@@ -20,9 +21,11 @@ double number_option(const std::string& name, const std::string& text, double le
     value = std::stod(text, &used);
   } catch (const std::exception&) {
   }
-  if (used != text.size() || !(value >= least && value <= most))
-    throw std::invalid_argument("restir: " + name + " takes a number in [" + std::to_string(least) + ", " +
-                                std::to_string(most) + "], not " + text);
+  if (used != text.size() || !(value >= least && value <= most)) {
+    char range[64];
+    std::snprintf(range, sizeof range, "[%g, %g]", least, most);
+    throw std::invalid_argument("restir: " + name + " takes a number in " + range + ", not " + text);
+  }
   return value;
 }
 
