@@ -67,7 +67,7 @@ std::optional<std::string> undeclared_parameter(const tracer::StrategyOptions& o
 
 /// --strategy-option's help: the options of the strategies that have any.
 std::string parameter_help() {
-  std::string help = "NAME=VALUE: an option of a plugin's strategy, which reads it by name; repeatable";
+  std::string help = "NAME=VALUE: an option of the strategy (restir's, a plugin's), which reads it by name; repeatable";
   for (const tracer::StrategyDefinition* s : tracer::registered_strategies())
     for (const tracer::StrategyParameter& p : s->parameters) help += "; " + s->name + ": " + p.name + " (" + p.help + ")";
   return help;
