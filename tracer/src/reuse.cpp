@@ -91,10 +91,16 @@ void Reuse::begin_pass() {
   std::swap(final_, previous_final_);
 }
 
-float Reuse::target(const PrimaryVertex& v, const Sample& y) const {
+std::optional<LightLiSample> Reuse::seen(const Sample& y, const ShadingPoint& at) const {
   const Light light = emitters_.light(y.point.light);
-  const std::optional<LightLiSample> s = y.punctual ? light.sample_li(1.0, v.at) : light.sample_li(y.point, v.at);
-  if (!s || !(s->pdf > 0.0f)) return 0.0f;
+  std::optional<LightLiSample> s = y.punctual ? light.sample_li(1.0, at) : light.sample_li(y.point, at);
+  if (!s || !(s->pdf > 0.0f)) return std::nullopt;
+  return s;
+}
+
+float Reuse::target(const PrimaryVertex& v, const Sample& y) const {
+  const std::optional<LightLiSample> s = seen(y, v.at);
+  if (!s) return 0.0f;
   return luminance(tracer_.unshadowed(v, *s)) / s->pdf;
 }
 
@@ -203,14 +209,12 @@ std::optional<LightLiSample> Reuse::light(std::uint32_t pixel) const {
   const Reservoir& r = final_[pixel];
   const std::optional<PrimaryVertex>& v = vertices_[pixel];
   if (!v || !r.y || !(r.W > 0.0f)) return std::nullopt;
-  const Light light = emitters_.light(r.y->point.light);
-  std::optional<LightLiSample> s =
-      r.y->punctual ? light.sample_li(1.0, v->at) : light.sample_li(r.y->point, v->at);
-  if (!s || !(s->pdf > 0.0f)) return std::nullopt;
+  std::optional<LightLiSample> s = seen(*r.y, v->at);
+  if (!s) return std::nullopt;
   // Its contribution f Li G W is f Li over this density in solid angle (1 / G: its unit density's).
   s->pdf /= r.W;
   if (!s->delta)
-    s->mis_pdf = light.pdf_li(strategy_.pdf(s->light, s->b1, s->b2, v->at), -s->wi, s->distance);
+    s->mis_pdf = emitters_.light(s->light).pdf_li(strategy_.pdf(s->light, s->b1, s->b2, v->at), -s->wi, s->distance);
   return s;
 }
 

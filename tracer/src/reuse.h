@@ -87,6 +87,9 @@ class Reuse {
   Reservoir combine(const std::vector<Input>& inputs, PathRandom& random) const;
   /// Input i's weight for its own sample.
   float balance(const std::vector<Input>& inputs, std::size_t i) const;
+  /// `y` seen from `at`, its densities those of a unit area density (pdf = 1 / G); none where
+  /// it is not seen.
+  std::optional<LightLiSample> seen(const Sample& y, const ShadingPoint& at) const;
   float target(const PrimaryVertex& v, const Sample& y) const;
 
   const PathTracer& tracer_;
