@@ -6,12 +6,12 @@
 // pixels just in front of the panel have neighbours behind it, whose targets are zero where
 // theirs are not: where reuse is biased unless its weights account for every domain.
 //
-// Unbiased. Hypothesis: with temporal and spatial reuse, either alone, and neither, the expected
-// image is that of `ris` (unbiased, tested against quadrature in analytic_test.cpp). Test: 40
+// Unbiased. Hypothesis: with temporal and spatial reuse, either alone, and neither, weighed
+// pairwise (the default) or by the balance heuristic, the expected image is that of `ris` (unbiased, tested against quadrature in analytic_test.cpp). Test: 40
 // renders of 8 passes (seeds 1..40) per configuration and of `ris` (seeds 1001..1040); each
 // image column's mean luminance, Welch's z between the two samples of 40 column means; every
-// column |z| < 4.4 (two-sided p = 1e-5, family alpha 0.01 over 24 columns x 8 comparisons by
-// Sidak: 5 configurations here, 3 frames of an animation below). Reuse with Bitterli et al.'s 1/M weights (weights=uniform), biased where domains
+// column |z| < 4.4 (two-sided p = 1e-5, family alpha 0.01 over 24 columns x 9 comparisons by
+// Sidak: 6 configurations here, 3 frames of an animation below). Reuse with Bitterli et al.'s 1/M weights (weights=uniform), biased where domains
 // differ, must fail the same check.
 //
 // Convergence. The passes of one image are correlated, yet its error must fall as passes grow.
@@ -171,7 +171,8 @@ std::vector<double>* Restir::pixels_ = nullptr;
 
 TEST_F(Restir, EveryReuseIsUnbiased) {
   for (const auto& parameters : std::vector<std::map<std::string, std::string>>{
-           {{"temporal", "on"}}, {}, {{"temporal", "on"}, {"neighbours", "0"}}, {{"neighbours", "0"}}}) {
+           {{"temporal", "on"}}, {}, {{"temporal", "on"}, {"neighbours", "0"}}, {{"neighbours", "0"}},
+           {{"temporal", "on"}, {"weights", "balance"}}}) {
     std::string name;
     for (const auto& [k, v] : parameters) name += k + "=" + v + " ";
     const std::vector<double> z = welch_z(column_means(*scene_, restir(parameters), 1), *reference_);

@@ -90,8 +90,7 @@ PathTracer::PathTracer(const Scene& scene, const Geometry& geometry, const Emitt
                       pass_through_materials_.end();
 }
 
-PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& rays,
-                                  const std::optional<LightLiSample>* first_light) const {
+PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& rays, const FirstSurface* first) const {
   PathEstimate out;
   glm::vec3& sum = out.radiance;
   glm::vec3 throughput(1.0f);
@@ -104,8 +103,14 @@ PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& ra
   const Volume* medium = nullptr;
   unsigned crossings = 0;
   for (unsigned depth = 0;;) {
-    const std::optional<Hit> hit = geometry_.intersect(ray, kInfinity);
-    ++rays;
+    const bool camera_ray = depth == 0 && crossings == 0;
+    std::optional<Hit> hit;
+    if (first && camera_ray) {
+      hit = first->hit;
+    } else {
+      hit = geometry_.intersect(ray, kInfinity);
+      ++rays;
+    }
     if (!hit) break;
     if (medium) throughput *= medium->transmittance(hit->distance);
     const Vertex vertex{*hit, surface_point(scene_, *hit), -ray.direction};
@@ -119,9 +124,9 @@ PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& ra
     const Bsdf bsdf(surface_params(scene_, material, vertex.point), vertex.point.shading_normal);
     std::optional<BsdfSample> s;
     if (depth < max_depth_) {
-      if (first_light && depth == 0 && crossings == 0) {
-        if (*first_light)
-          if (const std::optional<Connection> c = connect(vertex, bsdf, **first_light))
+      if (first && camera_ray) {
+        if (first->light)
+          if (const std::optional<Connection> c = connect(vertex, bsdf, *first->light))
             sum += throughput * shade(vertex, bsdf, *c, 1.0f, rays);
       } else {
         sum += throughput * light_sample(vertex, bsdf, random, rays);
@@ -263,12 +268,12 @@ glm::vec3 PathTracer::shade(const Vertex& vertex, const Bsdf& bsdf, const Connec
 }
 
 std::optional<PrimaryVertex> PathTracer::primary_vertex(const Ray& ray, std::uint64_t& rays) const {
-  if (max_depth_ == 0) return std::nullopt;
   const std::optional<Hit> hit = geometry_.intersect(ray, kInfinity);
   ++rays;
   if (!hit) return std::nullopt;
   const SurfacePoint point = surface_point(scene_, *hit);
-  return PrimaryVertex{{point.position, point.shading_normal},
+  return PrimaryVertex{*hit,
+                       {point.position, point.shading_normal},
                        point.geometric_normal,
                        -ray.direction,
                        hit->distance,

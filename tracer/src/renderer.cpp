@@ -127,7 +127,7 @@ struct Renderer::State {
   Clock::time_point strategy_built = Clock::now();
   PinholeCamera camera;
   PathTracer tracer;
-  /// restir's reservoirs; none for the other strategies.
+  /// restir's reservoirs; none for the other strategies, nor where paths do not scatter.
   std::optional<Reuse> reuse;
   double first_pass_seconds = 0.0;  ///< of the passes of this animation frame
   /// The passes rendered so far of this animation frame; render() starts it again.
@@ -152,7 +152,8 @@ struct Renderer::State {
         strategy(make_light_strategy(emitters, choice.options)),
         camera(scene_camera(s), r.width, r.height),
         tracer(s, geometry, emitters, *strategy, r.max_depth) {
-    if (const ReuseOptions* options = reuse_of(*strategy))
+    const ReuseOptions* options = reuse_of(*strategy);
+    if (options && r.max_depth > 0)  // without scattering nothing is lit by a light sample
       reuse.emplace(tracer, emitters, *strategy, *options, r.width, r.height);
   }
 };
@@ -251,9 +252,9 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
       const std::uint32_t pixel = y * settings.width + x;
       PathRandom random(key, pixel, f);
       const Ray ray = camera_ray(x, y, random);
-      std::optional<LightLiSample> first_light;
-      if (s.reuse) first_light = s.reuse->light(pixel);
-      PathEstimate e = tracer.radiance(ray, random, rays.local(), s.reuse ? &first_light : nullptr);
+      std::optional<PathTracer::FirstSurface> first;
+      if (s.reuse) first = s.reuse->first_surface(pixel);
+      PathEstimate e = tracer.radiance(ray, random, rays.local(), first ? &*first : nullptr);
       const glm::vec3& l = e.radiance;
       if (!std::isfinite(l.r + l.g + l.b)) {
         ++invalid.local();

@@ -60,7 +60,7 @@ TRS_REGISTER_STRATEGY({.name = "restir",
                                       {"radius", "how far those neighbours are, in pixels; 16"},
                                       {"m-cap", "the most a pixel's earlier passes count for, in passes' candidates; 20"},
                                       {"temporal", "on or off: reuse each pixel's reservoir of the pass before; off"},
-                                      {"weights", "balance (unbiased) or uniform (1/M: cheaper, biased); balance"}}});
+                                      {"weights", "pairwise or balance (both unbiased; pairwise evaluates 2n targets, balance n(n+2)) or uniform (1/M: biased); pairwise"}}});
 
 }  // namespace
 

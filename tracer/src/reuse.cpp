@@ -56,9 +56,10 @@ ReuseOptions reuse_options(const std::map<std::string, std::string>& parameters)
       if (value != "on" && value != "off") throw std::invalid_argument("restir: temporal takes on or off, not " + value);
       o.temporal = value == "on";
     } else if (name == "weights") {
-      if (value != "balance" && value != "uniform")
-        throw std::invalid_argument("restir: weights takes balance or uniform, not " + value);
-      o.weights = value == "balance" ? ReuseOptions::Weights::balance : ReuseOptions::Weights::uniform;
+      if (value == "pairwise") o.weights = ReuseOptions::Weights::pairwise;
+      else if (value == "balance") o.weights = ReuseOptions::Weights::balance;
+      else if (value == "uniform") o.weights = ReuseOptions::Weights::uniform;
+      else throw std::invalid_argument("restir: weights takes pairwise, balance or uniform, not " + value);
     }
   }
   return o;
@@ -183,8 +184,7 @@ Reuse::Reservoir Reuse::combine(const std::vector<Input>& inputs, PathRandom& ra
     if (!r.y || !(r.W > 0.0f)) continue;
     const float p = i == 0 ? r.target : target(here, *r.y);
     if (!(p > 0.0f)) continue;
-    const float m = options_.weights == ReuseOptions::Weights::uniform ? inputs[i].M / out.M : balance(inputs, i);
-    const float w = m * p * r.W;
+    const float w = weight(inputs, i, p) * p * r.W;
     if (!(w > 0.0f) || !std::isfinite(w)) continue;
     sum += w;
     if (lightsampler::uniform_float(random.words()[0]) * sum < w) {
@@ -196,6 +196,36 @@ Reuse::Reservoir Reuse::combine(const std::vector<Input>& inputs, PathRandom& ra
   return out;
 }
 
+float Reuse::weight(const std::vector<Input>& inputs, std::size_t i, float p_0) const {
+  switch (options_.weights) {
+    case ReuseOptions::Weights::pairwise: return pairwise(inputs, i, p_0);
+    case ReuseOptions::Weights::balance: return balance(inputs, i);
+    case ReuseOptions::Weights::uniform: break;
+  }
+  float total = 0.0f;
+  for (const Input& in : inputs) total += in.M;
+  return inputs[i].M / total;
+}
+
+float Reuse::pairwise(const std::vector<Input>& inputs, std::size_t i, float p_0) const {
+  const std::size_t n = inputs.size() - 1;
+  if (n == 0) return 1.0f;
+  float total = 0.0f;
+  for (const Input& in : inputs) total += in.M;
+  const float own = inputs[0].M / float(n);  // the pixel's own confidence in each of its n pairs
+  // Pair j's share of the weight, and its part of it for the sample held at j (or here).
+  const auto pair = [&](std::size_t j, float p_j, bool theirs) {
+    const float share = (inputs[j].M + own) / total, denominator = inputs[j].M * p_j + own * p_0;
+    if (!(denominator > 0.0f)) return 0.0f;
+    return share * (theirs ? inputs[j].M * p_j : own * p_0) / denominator;
+  };
+  if (i > 0) return pair(i, inputs[i].reservoir->target, true);
+  const Sample& y = *inputs[0].reservoir->y;
+  float m = 0.0f;
+  for (std::size_t j = 1; j <= n; ++j) m += pair(j, target(*inputs[j].vertex, y), false);
+  return m;
+}
+
 float Reuse::balance(const std::vector<Input>& inputs, std::size_t i) const {
   // The generalized balance heuristic over the inputs' domains: M_i p_i(y) / sum_j M_j p_j(y).
   const Reservoir& r = *inputs[i].reservoir;
@@ -205,17 +235,20 @@ float Reuse::balance(const std::vector<Input>& inputs, std::size_t i) const {
   return inputs[i].M * r.target / denominator;
 }
 
-std::optional<LightLiSample> Reuse::light(std::uint32_t pixel) const {
+PathTracer::FirstSurface Reuse::first_surface(std::uint32_t pixel) const {
   const Reservoir& r = final_[pixel];
   const std::optional<PrimaryVertex>& v = vertices_[pixel];
-  if (!v || !r.y || !(r.W > 0.0f)) return std::nullopt;
-  std::optional<LightLiSample> s = seen(*r.y, v->at);
-  if (!s) return std::nullopt;
+  if (!v) return {};
+  PathTracer::FirstSurface first{v->hit, std::nullopt};
+  if (!r.y || !(r.W > 0.0f)) return first;
+  std::optional<LightLiSample>& s = first.light;
+  s = seen(*r.y, v->at);
+  if (!s) return first;
   // Its contribution f Li G W is f Li over this density in solid angle (1 / G: its unit density's).
   s->pdf /= r.W;
   if (!s->delta)
     s->mis_pdf = emitters_.light(s->light).pdf_li(strategy_.pdf(s->light, s->b1, s->b2, v->at), -s->wi, s->distance);
-  return s;
+  return first;
 }
 
 }  // namespace tracer

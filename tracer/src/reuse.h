@@ -10,10 +10,16 @@
 //    fixed within a frame), counted at most as `m_cap` passes' candidates;
 // 3. combines that with the step-2 reservoirs of a few neighbours within a radius, each rejected
 //    where its surface's normal or distance differs too much (spatial).
-// Each combination weighs reservoir i's sample with the generalized balance heuristic,
-// m_i(y) = M_i p_i(y) / sum_j M_j p_j(y), p_j the target at reservoir j's own surface: the
-// weights sum to one wherever a reservoir can hold y, so the combined W stays an unbiased
-// contribution weight. The kept sample is shaded with its shadow ray (visibility is never
+// Each combination weighs reservoir i's sample y with MIS weights m_i(y) that sum to one wherever
+// the pixel's own target is above zero, so the combined W stays an unbiased contribution weight
+// (p_j: the target at reservoir j's own surface, M_j its candidates, c the pixel's own):
+// - pairwise (the default; Bitterli 2022, "Correlations and reuse for fast and accurate physically
+//   based light transport", ch. 9): each neighbour i is weighed against the pixel's own reservoir
+//   alone, m_i(y) = s_i M_i p_i(y) / (M_i p_i(y) + M_c/n p_c(y)) with share
+//   s_i = (M_i + M_c/n) / sum_j M_j over the n neighbours, and the pixel's own sample takes what
+//   the pairs leave; 2n target evaluations a pixel;
+// - balance, the generalized balance heuristic, m_i(y) = M_i p_i(y) / sum_j M_j p_j(y):
+//   n(n+2) evaluations. The kept sample is shaded with its shadow ray (visibility is never
 // reused) and weighed against BSDF sampling with the strategy's own density, as `ris`'s are.
 // Deeper vertices keep `ris`. A new animation frame, or a new render, starts without history.
 
@@ -38,10 +44,10 @@ struct ReuseOptions {
   /// then share samples, and on the shipped scenes that costs more than the reuse gains
   /// (docs/noise.md, "Reuse across pixels and passes").
   bool temporal = false;
-  /// How a combination weighs its reservoirs' samples: the generalized balance heuristic
-  /// (unbiased), or in proportion to their M alone (Bitterli et al. 2020's 1/M weights: cheaper,
-  /// and biased, darker, where neighbouring surfaces see different lights).
-  enum class Weights { balance, uniform } weights = Weights::balance;
+  /// How a combination weighs its reservoirs' samples: pairwise or by the generalized balance
+  /// heuristic (both unbiased), or in proportion to their M alone (Bitterli et al. 2020's 1/M
+  /// weights: cheapest, and biased, darker, where neighbouring surfaces see different lights).
+  enum class Weights { pairwise, balance, uniform } weights = Weights::pairwise;
 };
 
 /// restir's options from --strategy-option NAME=VALUE (neighbours, radius, m-cap, temporal,
@@ -66,9 +72,9 @@ class Reuse {
   void gather(std::uint32_t pixel, const Ray& ray, PathRandom& random, std::uint64_t& rays);
   /// Step 3 for `pixel`, once every pixel gathered.
   void spatial(std::uint32_t pixel, PathRandom& random);
-  /// The light sample the first surface of `pixel`'s camera ray is lit by (PathTracer::radiance's
-  /// `first_light`); none where the reservoir holds nothing.
-  std::optional<LightLiSample> light(std::uint32_t pixel) const;
+  /// What `pixel`'s path starts from (PathTracer::radiance's `first`): its camera ray's hit, and
+  /// the light sample that lights it, none where the reservoir holds nothing.
+  PathTracer::FirstSurface first_surface(std::uint32_t pixel) const;
 
   /// One sample of a reservoir: a point of a triangle, or a punctual light (point.light).
   struct Sample {
@@ -85,8 +91,10 @@ class Reuse {
  private:
   struct Input;
   Reservoir combine(const std::vector<Input>& inputs, PathRandom& random) const;
-  /// Input i's weight for its own sample.
+  /// Input i's MIS weight for its own sample, given p_0 of it (the target at inputs[0]'s surface).
+  float weight(const std::vector<Input>& inputs, std::size_t i, float p_0) const;
   float balance(const std::vector<Input>& inputs, std::size_t i) const;
+  float pairwise(const std::vector<Input>& inputs, std::size_t i, float p_0) const;
   /// `y` seen from `at`, its densities those of a unit area density (pdf = 1 / G); none where
   /// it is not seen.
   std::optional<LightLiSample> seen(const Sample& y, const ShadingPoint& at) const;

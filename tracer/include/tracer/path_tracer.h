@@ -36,6 +36,7 @@ struct PathEstimate {
 /// The first surface a camera ray meets, where `restir` keeps its pixel's reservoir: the point
 /// light samples are seen from, and the BSDF that weighs them.
 struct PrimaryVertex {
+  Hit hit;
   ShadingPoint at;
   glm::vec3 geometric_normal;
   glm::vec3 wo;     ///< unit, towards the camera
@@ -50,15 +51,21 @@ class PathTracer {
   PathTracer(const Scene& scene, const Geometry& geometry, const Emitters& emitters,
              const LightStrategy& strategy, unsigned max_depth);
 
+  /// What `restir` found along a camera ray before its path: the ray's first hit, and the light
+  /// sample that lights it (its reservoir's, whose `pdf` is the reciprocal of its contribution
+  /// weight in solid angle; none: lit by nothing).
+  struct FirstSurface {
+    std::optional<Hit> hit;
+    std::optional<LightLiSample> light;
+  };
+
   /// Radiance arriving along `ray` (one estimate); adds the rays it traces to `rays`. With
-  /// `first_light`, the first surface the ray meets is lit by that light sample (none: by
-  /// nothing) instead of by the strategy's: `restir`'s reservoir, whose `pdf` is the reciprocal
-  /// of its contribution weight in solid angle.
-  PathEstimate radiance(Ray ray, PathRandom& random, std::uint64_t& rays,
-                        const std::optional<LightLiSample>* first_light = nullptr) const;
+  /// `first`, the ray's first hit is first->hit, traced already, and lit by first->light instead
+  /// of by the strategy's light sample.
+  PathEstimate radiance(Ray ray, PathRandom& random, std::uint64_t& rays, const FirstSurface* first = nullptr) const;
 
   /// The first surface `ray` meets, where radiance() would take a light sample (none: it meets
-  /// nothing, or max_depth is 0). Adds the ray to `rays`.
+  /// nothing). Adds the ray to `rays`.
   std::optional<PrimaryVertex> primary_vertex(const Ray& ray, std::uint64_t& rays) const;
   /// What light sample `s` brings to `v` unshadowed, f Li (its density left out); zero where it
   /// brings nothing.
