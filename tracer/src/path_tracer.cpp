@@ -272,12 +272,14 @@ std::optional<PrimaryVertex> PathTracer::primary_vertex(const Ray& ray, std::uin
   ++rays;
   if (!hit) return std::nullopt;
   const SurfacePoint point = surface_point(scene_, *hit);
-  return PrimaryVertex{*hit,
-                       {point.position, point.shading_normal},
-                       point.geometric_normal,
-                       -ray.direction,
-                       hit->distance,
-                       Bsdf(surface_params(scene_, scene_.materials[point.material], point), point.shading_normal)};
+  PrimaryVertex v{*hit,
+                  {point.position, point.shading_normal},
+                  point.geometric_normal,
+                  -ray.direction,
+                  hit->distance,
+                  Bsdf(surface_params(scene_, scene_.materials[point.material], point), point.shading_normal)};
+  v.bsdf.prepare(v.wo);
+  return v;
 }
 
 glm::vec3 PathTracer::unshadowed(const PrimaryVertex& v, const LightLiSample& s) const {

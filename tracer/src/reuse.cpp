@@ -1,5 +1,6 @@
 #include "reuse.h"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -46,7 +47,7 @@ ReuseOptions reuse_options(const std::map<std::string, std::string>& parameters)
   ReuseOptions o;
   for (const auto& [name, value] : parameters) {
     if (name == "neighbours") {
-      o.neighbours = unsigned(number_option(name, value, 0, 64));
+      o.neighbours = unsigned(number_option(name, value, 0, kMaxNeighbours));
       if (double(o.neighbours) != std::stod(value)) throw std::invalid_argument("restir: neighbours takes a whole number, not " + value);
     } else if (name == "radius") {
       o.radius = float(number_option(name, value, 1, 1024));
@@ -140,9 +141,9 @@ void Reuse::gather(std::uint32_t pixel, const Ray& ray, PathRandom& random, std:
     return;
   }
   const float cap = options_.m_cap * float(strategy_.candidates());
-  const std::vector<Input> inputs{{&initial, &*v, initial.M},
-                                  {&previous_final_[pixel], &*previous_vertices_[pixel],
-                                   std::min(previous_final_[pixel].M, cap)}};
+  const std::array<Input, 2> inputs{{{&initial, &*v, initial.M},
+                                     {&previous_final_[pixel], &*previous_vertices_[pixel],
+                                      std::min(previous_final_[pixel].M, cap)}}};
   temporal_[pixel] = combine(inputs, random);
 }
 
@@ -152,9 +153,9 @@ void Reuse::spatial(std::uint32_t pixel, PathRandom& random) {
     final_[pixel] = temporal_[pixel];
     return;
   }
-  // Other pixels' threads read these surfaces too, and a Bsdf keeps a cache: each its own copy.
-  std::vector<PrimaryVertex> surfaces{*v};
-  std::vector<const Reservoir*> reservoirs{&temporal_[pixel]};
+  std::array<Input, 1 + kMaxNeighbours> inputs;
+  inputs[0] = {&temporal_[pixel], &*v, temporal_[pixel].M};
+  std::size_t count = 1;
   const int x = int(pixel % width_), y = int(pixel / width_);
   for (unsigned k = 0; k < options_.neighbours; ++k) {
     const auto u = random.floats();
@@ -166,15 +167,13 @@ void Reuse::spatial(std::uint32_t pixel, PathRandom& random) {
     if (!w || glm::dot(w->at.normal, v->at.normal) < kNormalCosine ||
         std::abs(w->distance - v->distance) > kDistanceFraction * v->distance)
       continue;
-    surfaces.push_back(*w);
-    reservoirs.push_back(&temporal_[q]);
+    // Other pixels' threads query this surface too: with its own wo, which its BSDF is prepared for.
+    inputs[count++] = {&temporal_[q], &*w, temporal_[q].M};
   }
-  std::vector<Input> inputs;
-  for (std::size_t i = 0; i < surfaces.size(); ++i) inputs.push_back({reservoirs[i], &surfaces[i], reservoirs[i]->M});
-  final_[pixel] = combine(inputs, random);
+  final_[pixel] = combine({inputs.data(), count}, random);
 }
 
-Reuse::Reservoir Reuse::combine(const std::vector<Input>& inputs, PathRandom& random) const {
+Reuse::Reservoir Reuse::combine(std::span<const Input> inputs, PathRandom& random) const {
   const PrimaryVertex& here = *inputs[0].vertex;
   Reservoir out;
   float sum = 0.0f;
@@ -196,7 +195,7 @@ Reuse::Reservoir Reuse::combine(const std::vector<Input>& inputs, PathRandom& ra
   return out;
 }
 
-float Reuse::weight(const std::vector<Input>& inputs, std::size_t i, float p_0) const {
+float Reuse::weight(std::span<const Input> inputs, std::size_t i, float p_0) const {
   switch (options_.weights) {
     case ReuseOptions::Weights::pairwise: return pairwise(inputs, i, p_0);
     case ReuseOptions::Weights::balance: return balance(inputs, i);
@@ -207,7 +206,7 @@ float Reuse::weight(const std::vector<Input>& inputs, std::size_t i, float p_0) 
   return inputs[i].M / total;
 }
 
-float Reuse::pairwise(const std::vector<Input>& inputs, std::size_t i, float p_0) const {
+float Reuse::pairwise(std::span<const Input> inputs, std::size_t i, float p_0) const {
   const std::size_t n = inputs.size() - 1;
   if (n == 0) return 1.0f;
   float total = 0.0f;
@@ -226,7 +225,7 @@ float Reuse::pairwise(const std::vector<Input>& inputs, std::size_t i, float p_0
   return m;
 }
 
-float Reuse::balance(const std::vector<Input>& inputs, std::size_t i) const {
+float Reuse::balance(std::span<const Input> inputs, std::size_t i) const {
   // The generalized balance heuristic over the inputs' domains: M_i p_i(y) / sum_j M_j p_j(y).
   const Reservoir& r = *inputs[i].reservoir;
   float denominator = 0.0f;

@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -35,9 +36,15 @@
 
 namespace tracer {
 
+/// The most neighbours a pixel's reservoir is combined with in a pass.
+constexpr unsigned kMaxNeighbours = 64;
+
 struct ReuseOptions {
-  unsigned neighbours = 3;  ///< spatial: neighbours' reservoirs combined per pass; 0: no spatial reuse
-  float radius = 16.0f;     ///< spatial: how far the neighbours are, in pixels
+  /// spatial: neighbours' reservoirs combined per pass; 0: no spatial reuse. Eight within six
+  /// pixels gain as much as `ris` with 64 candidates on lights whose texels decide
+  /// (docs/noise.md, "Reuse across pixels and passes").
+  unsigned neighbours = 8;
+  float radius = 6.0f;  ///< spatial: how far the neighbours are, in pixels
   /// temporal: the most a reservoir of earlier passes counts for, in passes' candidates (its M cap)
   float m_cap = 20.0f;
   /// Reuse each pixel's reservoir of the pass before. Off unless asked: the passes of an image
@@ -90,11 +97,11 @@ class Reuse {
 
  private:
   struct Input;
-  Reservoir combine(const std::vector<Input>& inputs, PathRandom& random) const;
+  Reservoir combine(std::span<const Input> inputs, PathRandom& random) const;
   /// Input i's MIS weight for its own sample, given p_0 of it (the target at inputs[0]'s surface).
-  float weight(const std::vector<Input>& inputs, std::size_t i, float p_0) const;
-  float balance(const std::vector<Input>& inputs, std::size_t i) const;
-  float pairwise(const std::vector<Input>& inputs, std::size_t i, float p_0) const;
+  float weight(std::span<const Input> inputs, std::size_t i, float p_0) const;
+  float balance(std::span<const Input> inputs, std::size_t i) const;
+  float pairwise(std::span<const Input> inputs, std::size_t i, float p_0) const;
   /// `y` seen from `at`, its densities those of a unit area density (pdf = 1 / G); none where
   /// it is not seen.
   std::optional<LightLiSample> seen(const Sample& y, const ShadingPoint& at) const;

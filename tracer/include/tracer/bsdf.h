@@ -79,6 +79,9 @@ class Bsdf {
   std::optional<PassThrough> pass_through(glm::vec3 wo) const;
   /// Whether any light goes through the surface: eval() may be non-zero across it.
   bool transmits() const { return transmission_ > 0.0f; }
+  /// Works out now what depends on `wo`, which queries with that wo then only read: several
+  /// threads may make them at once (queries with another wo may not).
+  void prepare(glm::vec3 wo) const { outgoing(wo); }
 
  private:
   /// The probabilities with which sample() picks each lobe, as wo sees them: summing to 1 (all 0

@@ -41,7 +41,7 @@ struct PrimaryVertex {
   glm::vec3 geometric_normal;
   glm::vec3 wo;     ///< unit, towards the camera
   float distance;   ///< from the camera
-  Bsdf bsdf;        ///< copy it to query it from another pixel's thread (Bsdf keeps a cache)
+  Bsdf bsdf;        ///< prepared for wo: any thread may query it with wo (Bsdf::prepare)
 };
 
 class PathTracer {
