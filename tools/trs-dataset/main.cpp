@@ -13,9 +13,11 @@
 #include "dataset_file.h"
 #include "density_maps.h"
 #include "meshes.h"
+#include "scene_io/atomic_file.h"
 #include "scene_io/density_io.h"
 #include "scene_io/file_error.h"
 #include "scene_io/gltf_document.h"
+#include "scene_io/image_output.h"
 #include "scene_io/mesh_io.h"
 
 namespace {
@@ -29,7 +31,7 @@ struct CommandLine {
   bool emissive = false;
   std::string generate_mesh, generate_map;
   std::uint32_t map_size = 2048;
-  fs::path out;
+  fs::path out, obj, exr;
 };
 
 bool is_gltf(const fs::path& file) {
@@ -74,6 +76,35 @@ trs_bench::DensityMap asset_map(const fs::path& file) {
   return {file.stem().string(), data.width, data.height, std::move(data.texels)};
 }
 
+/// The mesh as Wavefront OBJ, for trs-sample: v flipped to OBJ's (v = 0 at the bottom).
+void write_obj(const fs::path& file, const trs_bench::Mesh& mesh) {
+  std::string text;
+  char line[96];
+  for (std::size_t i = 0; i < mesh.positions.size(); i += 3) {
+    std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", mesh.positions[i], mesh.positions[i + 1], mesh.positions[i + 2]);
+    text += line;
+  }
+  for (std::size_t i = 0; i < mesh.uvs.size(); i += 2) {
+    std::snprintf(line, sizeof line, "vt %.9g %.9g\n", mesh.uvs[i], 1.0 - double(mesh.uvs[i + 1]));
+    text += line;
+  }
+  for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
+    const std::uint32_t a = mesh.indices[t] + 1, b = mesh.indices[t + 1] + 1, c = mesh.indices[t + 2] + 1;
+    std::snprintf(line, sizeof line, "f %u/%u %u/%u %u/%u\n", a, a, b, b, c, c);
+    text += line;
+  }
+  trs::AtomicFile out(file);
+  out.write(text);
+  out.commit();
+}
+
+/// The map as OpenEXR, for trs-sample: its density in R, G and B (luminance is the density).
+void write_map_exr(const fs::path& file, const trs_bench::DensityMap& map) {
+  std::vector<float> rgb(3 * map.texels.size());
+  for (std::size_t i = 0; i < map.texels.size(); ++i) rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = map.texels[i];
+  trs::write_exr(file, map.width, map.height, rgb.data());
+}
+
 int run(const CommandLine& cl) {
   trs_bench::Mesh mesh;
   trs_bench::DensityMap map;
@@ -88,9 +119,19 @@ int run(const CommandLine& cl) {
   if (!cl.density.empty()) map = asset_map(cl.density);
   if (!cl.generate_map.empty())
     map = trs_bench::make_map(trs_bench::parse_map_spec(cl.generate_map), cl.map_size);
-  trs_bench::write_dataset(cl.out, mesh, map);
-  std::cout << cl.out.string() << ": " << mesh.triangle_count() << " triangles, map "
-            << map.width << "x" << map.height << "\n";
+  if (!cl.out.empty()) {
+    trs_bench::write_dataset(cl.out, mesh, map);
+    std::cout << cl.out.string() << ": " << mesh.triangle_count() << " triangles, map " << map.width << "x"
+              << map.height << "\n";
+  }
+  if (!cl.obj.empty()) {
+    write_obj(cl.obj, mesh);
+    std::cout << cl.obj.string() << ": " << mesh.triangle_count() << " triangles\n";
+  }
+  if (!cl.exr.empty()) {
+    write_map_exr(cl.exr, map);
+    std::cout << cl.exr.string() << ": " << map.width << "x" << map.height << "\n";
+  }
   return 0;
 }
 
@@ -121,12 +162,20 @@ int main(int argc, char** argv) {
   app.add_option("--map-size", cl.map_size, "width and height of a generated map, texels")
       ->check(CLI::Range(1u, 1u << 15))
       ->capture_default_str();
-  app.add_option("--out", cl.out, "the dataset file to write (.trsd)")->required();
+  app.add_option("--out", cl.out, "the dataset file to write (.trsd)");
+  app.add_option("--obj", cl.obj, "the mesh as Wavefront OBJ, for trs-sample");
+  app.add_option("--exr", cl.exr, "the map as OpenEXR (its density in R, G and B), for trs-sample");
   try {
     app.parse(argc, argv);
     if (!cl.generate_mesh.empty()) trs_bench::parse_mesh_spec(cl.generate_mesh);
     if (!cl.generate_map.empty()) trs_bench::parse_map_spec(cl.generate_map);
     if (cl.emissive && !is_gltf(cl.mesh)) throw CLI::ValidationError("--emissive", "needs a glTF --mesh");
+    if (cl.out.empty() && cl.obj.empty() && cl.exr.empty())
+      throw CLI::ValidationError("nowhere to write: give --out, --obj or --exr");
+    if (!cl.obj.empty() && cl.mesh.empty() && cl.generate_mesh.empty())
+      throw CLI::ValidationError("--obj", "needs a mesh (--mesh, --generate-mesh)");
+    if (!cl.exr.empty() && cl.density.empty() && !cl.emissive && cl.generate_map.empty())
+      throw CLI::ValidationError("--exr", "needs a map (--density, --emissive, --generate-map)");
     if (cl.mesh.empty() && cl.generate_mesh.empty() && cl.density.empty() && cl.generate_map.empty())
       throw CLI::ValidationError("nothing to write: give a mesh (--mesh, --generate-mesh), a map "
                                  "(--density, --emissive, --generate-map) or both");
