@@ -150,9 +150,11 @@ TEST_F(CliTest, WritesPlyAndStatsThatAgree) {
   const nlohmann::json stats = read_json(file("s.json"));
   for (const char* key : {"expected_total", "sample_count", "candidates", "acceptance_rate",
                           "exhausted", "exact_draws", "method", "backend", "device", "threads", "seed",
-                          "target_count", "scan", "triangles", "map", "mesh", "ms"}) {
+                          "target_count", "scan", "triangles", "map", "mesh", "ms", "construction"}) {
     EXPECT_TRUE(stats.contains(key)) << key;
   }
+  EXPECT_EQ(stats["construction"]["parts"], 2);  // a constant map: nothing to split
+  EXPECT_GE(stats["construction"]["ms"].get<double>(), stats["construction"]["subdivision_ms"].get<double>());
   EXPECT_EQ(stats["mesh"], mesh.string());
   EXPECT_EQ(stats["map"]["file"], map.string());
   EXPECT_EQ(stats["map"]["width"], 4);

@@ -15,6 +15,8 @@
 
 #include <cmath>
 
+#include "core/geometry.h"
+#include "core/host_scene.h"
 #include "distribution_check.h"
 #include "lightsampler/refinement.h"
 
@@ -298,13 +300,29 @@ TEST(RefinementCostModel, PartsGrowWithTheSamplesAndKeepToTheirBudget) {
   EXPECT_GT(previous, 100u);
 }
 
+TEST(RefinementCostModel, ExploresOnlyWhatAFrameRepays) {
+  // Hypothesis: a split is explored only where the candidates a frame could save on it repay
+  // measuring its four parts. Each of the strokes' two triangles covers 4096 texels: measuring
+  // its parts (12 candidates a texel) costs more than 300 samples waste on it (about 50 candidates
+  // a sample), not 3,000.
+  const Strokes strokes;
+  const DensityMapView view = strokes.map.view();
+  EXPECT_EQ(RefinedMesh(strokes.mesh.view(), {&view, 1}, auto_refinement(300)).levels(), 0u);
+  EXPECT_GT(RefinedMesh(strokes.mesh.view(), {&view, 1}, auto_refinement(3e3)).levels(), 0u);
+  // Measuring free, the same frame explores.
+  Refinement free_measures = auto_refinement(300);
+  free_measures.measure_cost = free_measures.measure_texel_cost = 0.0f;
+  EXPECT_GT(RefinedMesh(strokes.mesh.view(), {&view, 1}, free_measures).levels(), 0u);
+}
+
 TEST(RefinementCostModel, ItsPartsCostLessThanTheWholeOrOneRoundOfSplits) {
   // Hypothesis: the kept splits are the cheapest the explored ones allow; in particular cheaper
   // per frame, as the model counts it, than no subdivision and than a subdivision that splits
   // every part it tried one round further (the acceptance rules at 0.85, which split blindly).
+  // From 3e4 samples: fewer cannot repay exploring a split here (ExploresOnlyWhatAFrameRepays).
   const Strokes strokes;
   const DensityMapView view = strokes.map.view();
-  for (double samples : {3e3, 3e4, 3e5}) {
+  for (double samples : {3e4, 3e5, 3e6}) {
     const Refinement refinement = auto_refinement(samples);
     const double cost = frame_cost(RefinedMesh(strokes.mesh.view(), {&view, 1}, refinement), view, samples,
                                    refinement.part_cost);
@@ -315,6 +333,90 @@ TEST(RefinementCostModel, ItsPartsCostLessThanTheWholeOrOneRoundOfSplits) {
     EXPECT_LT(cost, whole) << samples;
     EXPECT_LT(cost, blind) << samples;
   }
+}
+
+TEST(Refinement, APointClearOfTexelEdgesReadsItsTexelEitherWay) {
+  // Hypothesis: where core::clear_of_texel_edges says a part's point, brought back to its
+  // triangle, lies clear of its texel's edges, the point reads the same texel in the part's
+  // coordinates as in the triangle's; the refined sampler then skips the full check. The points:
+  // each part's, moved in x to a texel edge, then off it by 0 to 8 margins (seed 7). Those on the
+  // edge itself must read another texel sometimes, or the test could not tell a margin too small.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  int clear = 0, near_edge_clear = 0, differ_on_edge = 0;
+  for (const Scenario& s : trs_test::scenarios()) {
+    const DensityMapView view = s.map.view();
+    const RefinedMesh refined(s.mesh.view(), {&view, 1}, kEager);
+    const core::HostScene parts(refined.view(), {&view, 1}), triangles(s.mesh.view(), {&view, 1});
+    for (std::uint32_t part = 0; part < refined.triangle_count(); ++part) {
+      const core::TexelTriangle& pt = parts.texel_triangles()[part];
+      if (!(std::abs(pt.edge1[0]) > 0.0f)) continue;
+      for (int k = 0; k < 16; ++k) {
+        Sample local{part, 0.5f * u(random), 0.5f * u(random)};
+        const core::TexelTriangle& tt = triangles.texel_triangles()[refined.to_parent(local).triangle];
+        const float magnitude = std::max(std::abs(tt.origin[0]) + std::abs(tt.edge1[0]) + std::abs(tt.edge2[0]),
+                                         std::abs(tt.origin[1]) + std::abs(tt.edge1[1]) + std::abs(tt.edge2[1]));
+        const float x = core::texel_space_point(pt, local.b1, local.b2)[0];
+        const float offset = float(k % 9) * magnitude * 0x1p-18f * (k < 9 ? 1.0f : -1.0f);
+        local.b1 += (std::round(x) + offset - x) / pt.edge1[0];
+        if (local.b1 < 0.0f || local.b1 + local.b2 > 1.0f) continue;
+        const Sample back = refined.to_parent(local);
+        const std::optional<Texel> drawn = parts.texel(part, local.b1, local.b2),
+                                   read = triangles.texel(back.triangle, back.b1, back.b2);
+        const bool same = !drawn || (read && read->map == drawn->map && read->x == drawn->x && read->y == drawn->y);
+        if (k % 9 == 0 && !same) ++differ_on_edge;
+        if (!core::clear_of_texel_edges(tt, back.b1, back.b2)) continue;
+        ++clear;
+        if (k % 9 <= 2) ++near_edge_clear;
+        ASSERT_TRUE(same) << s.name << ", part " << part << " at (" << local.b1 << ", " << local.b2 << ")";
+      }
+    }
+  }
+  EXPECT_GT(clear, 1000);
+  EXPECT_GT(near_edge_clear, 100);  // points within two margins of an edge that it calls clear
+  EXPECT_GT(differ_on_edge, 0);
+  std::printf("clear %d (within two margins of an edge %d); on an edge, another texel %d times\n", clear,
+              near_edge_clear, differ_on_edge);
+}
+
+TEST(Refinement, ItsMeasuresAreTheBackendsCounts) {
+  // Hypothesis: the subdivision's measure of each part it keeps is, to the bit, what the CPU
+  // backend's counting pass gives over the parts (the refined sampler hands it over instead of
+  // counting again), whether it split (the eager rules, the cost model) or not.
+  for (const Scenario& s : trs_test::scenarios()) {
+    const DensityMapView view = s.map.view();
+    for (const Refinement& refinement : {kEager, auto_refinement(s.target), auto_refinement(1.0)}) {
+      const RefinedMesh refined(s.mesh.view(), {&view, 1}, refinement);
+      Frame counted;
+      make_cpu_sampler(refined.view(), {&view, 1})->generate({.seed = 1, .realize = false}, counted);
+      ASSERT_EQ(refined.expected_counts().size(), refined.triangle_count()) << s.name;
+      for (std::uint32_t t = 0; t < refined.triangle_count(); ++t) {
+        EXPECT_EQ(refined.expected_counts()[t], counted.expected_counts[t]) << s.name << ", part " << t;
+        EXPECT_EQ(refined.max_density()[t], counted.max_density[t]) << s.name << ", part " << t;
+      }
+    }
+  }
+}
+
+TEST(Refinement, AFrameUsesTheSubdivisionsMeasures) {
+  // The refined sampler's first frame counts nothing; its per-triangle outputs and total are
+  // those of a sampler that counted (PerTriangleOutputsAreTheTrianglesOwn checks them against the
+  // caller's mesh), as is a frame that asks for another overlap formula and so counts again.
+  const Scenario s = trs_test::scenarios()[2];
+  const DensityMapView view = s.map.view();
+  const std::unique_ptr<Sampler> sampler = refined_cpu_sampler(s, view, kEager);
+  Frame first, recounted;
+  sampler->generate({.seed = 1, .realize = false}, first);
+  EXPECT_FALSE(first.counting_used.has_value());
+  sampler->generate({.seed = 1, .overlap = Overlap::clipping, .realize = false}, recounted);
+  sampler->generate({.seed = 1, .realize = false}, recounted);
+  EXPECT_EQ(recounted.counting_used, Counting::cpu);
+  EXPECT_EQ(first.expected_total, recounted.expected_total);
+  for (std::size_t t = 0; t < first.expected_counts.size(); ++t) {
+    EXPECT_EQ(first.expected_counts[t], recounted.expected_counts[t]) << t;
+    EXPECT_EQ(first.max_density[t], recounted.max_density[t]) << t;
+  }
+  EXPECT_THROW(make_cpu_sampler(s.mesh.view(), {&view, 1})->use_counts({}, {}), std::invalid_argument);
 }
 
 TEST(RefinementCostModel, SamplesMatchTheDensity) {

@@ -9,6 +9,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/geometry.h"
 #include "core/host_scene.h"
 #include "lightsampler/refinement.h"
 
@@ -104,8 +105,10 @@ class RefinedSampler final : public Sampler {
   /// point drawn on a texel's edge can round across it when its coordinates change, and would
   /// then read the density of a texel it was not drawn from (one without any, perhaps): it is
   /// moved back by a millionth of the triangle, along whichever barycentric axis crosses back.
+  /// Most points lie well inside a texel: they are checked by arithmetic alone.
   Sample on_its_texel(const Sample& part_sample) const {
     const Sample s = refined_->to_parent(part_sample);
+    if (core::clear_of_texel_edges(input_.texel_triangles()[s.triangle], s.b1, s.b2)) return s;
     const std::optional<Texel> drawn = parts_->maps().texel(part_sample.triangle, part_sample.b1, part_sample.b2);
     const auto on_drawn = [&](const Sample& x) {
       const std::optional<Texel> t = input_.texel(x.triangle, x.b1, x.b2);
@@ -127,13 +130,14 @@ class RefinedSampler final : public Sampler {
     const auto start = std::chrono::steady_clock::now();
     RefinedMesh refined(mesh_.view(), maps, refinement_);
     subdivision_ms_ = ms_since(start);
-    if (refined.levels() == 0) {
+    parts_ = backend_(refined.levels() == 0 ? mesh_.view() : refined.view(), maps);
+    // The subdivision measured every part it keeps (with no split, every triangle) as a count
+    // would: the first frame need not count them again.
+    if (!refined.expected_counts().empty()) parts_->use_counts(refined.expected_counts(), refined.max_density());
+    if (refined.levels() == 0)
       refined_.reset();
-      parts_ = backend_(mesh_.view(), maps);
-    } else {
+    else
       refined_ = std::move(refined);
-      parts_ = backend_(refined_->view(), maps);
-    }
     stale_ = false;
   }
 

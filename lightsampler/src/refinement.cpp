@@ -44,6 +44,13 @@ struct Measure {
   double acceptance;  ///< mean density over D_T^max; 1 with nothing to sample (no gain in splitting)
   double texels;      ///< area in texels
   double expected;    ///< the density's integral over the part
+  float max_density;  ///< D_T^max
+};
+
+/// A part the subdivision keeps, with its measure: its count as a backend would make it.
+struct MeasuredPart {
+  Part part;
+  Measure measure;
 };
 
 double texel_area(const core::TexelTriangle& t) {
@@ -94,6 +101,12 @@ std::vector<bool> splits_that_pay(const std::vector<std::size_t>& tried, const s
   return pays;
 }
 
+std::vector<MeasuredPart> unsplit(const std::vector<Part>& parts, const std::vector<Measure>& measured) {
+  std::vector<MeasuredPart> out(parts.size());
+  for (std::size_t i = 0; i < parts.size(); ++i) out[i] = {parts[i], measured[i]};
+  return out;
+}
+
 /// A part the cost model explored, and where its four parts are, if it was split.
 struct Node {
   Part part;
@@ -109,14 +122,21 @@ struct Node {
 /// every explored split is kept or undone bottom-up, whichever leaves the part and what lies
 /// below it cheaper per frame: candidates drawn plus part_cost per part.
 template <class Measurer>
-std::vector<Part> split_by_cost(const std::vector<Part>& roots, const std::vector<Measure>& measured,
+std::vector<MeasuredPart> split_by_cost(const std::vector<Part>& roots, const std::vector<Measure>& measured,
                                 const Refinement& refinement, const Measurer& measure, std::uint32_t& levels) {
   const double total = std::accumulate(measured.begin(), measured.end(), 0.0,
                                        [](double sum, const Measure& m) { return sum + m.expected; });
-  if (!(total > 0.0)) return roots;
+  if (!(total > 0.0)) return unsplit(roots, measured);
   const double candidates_per_bound = refinement.frame_samples / total;
   const double split_cost = 3.0 * double(refinement.part_cost);
   const auto wasted = [&](const Measure& m) { return candidates_per_bound * (m.bound - m.expected); };
+  // A split is explored only where the candidates a frame could save on it pay for its three
+  // more parts and for measuring its four: set-up then stays below what a frame repays.
+  const auto worth_exploring = [&](const Measure& m) {
+    const double measuring = 4.0 * refinement.measure_cost + refinement.measure_texel_cost * m.texels;
+    return m.acceptance < refinement.min_acceptance && m.texels > refinement.min_texels &&
+           wasted(m) > split_cost + measuring;
+  };
   const std::uint64_t room = refinement.max_triangles > roots.size() ? refinement.max_triangles - roots.size() : 0;
   std::uint64_t budget = std::min<std::uint64_t>(
       room, std::uint64_t(std::max(0.0, double(refinement.parts_per_sample) * refinement.frame_samples)));
@@ -129,15 +149,14 @@ std::vector<Part> split_by_cost(const std::vector<Part>& roots, const std::vecto
   std::vector<Part> children;
   for (std::uint32_t level = 0; level < refinement.max_levels && !frontier.empty(); ++level) {
     std::vector<std::size_t> tried;
-    for (std::size_t i : frontier) {
-      const Measure& m = nodes[i].measure;
-      if (m.acceptance < refinement.min_acceptance && m.texels > refinement.min_texels && wasted(m) > split_cost)
-        tried.push_back(i);
+    for (std::size_t i : frontier)
+      if (worth_exploring(nodes[i].measure)) tried.push_back(i);
+    if (tried.size() > budget / 3) {  // the most wasteful first; sorted only when the budget binds
+      std::stable_sort(tried.begin(), tried.end(), [&](std::size_t a, std::size_t b) {
+        return wasted(nodes[a].measure) > wasted(nodes[b].measure);
+      });
+      tried.resize(budget / 3);
     }
-    std::stable_sort(tried.begin(), tried.end(), [&](std::size_t a, std::size_t b) {
-      return wasted(nodes[a].measure) > wasted(nodes[b].measure);
-    });
-    tried.resize(std::min<std::uint64_t>(tried.size(), budget / 3));
     if (tried.empty()) break;
     budget -= 3 * tried.size();
     children.clear();
@@ -164,7 +183,7 @@ std::vector<Part> split_by_cost(const std::vector<Part>& roots, const std::vecto
     kept[i] = parts < whole;
     cost[i] = std::min(whole, parts);
   }
-  std::vector<Part> parts;
+  std::vector<MeasuredPart> parts;
   std::vector<std::size_t> stack;
   for (std::size_t root = 0; root < roots.size(); ++root) {
     stack.push_back(root);
@@ -172,7 +191,7 @@ std::vector<Part> split_by_cost(const std::vector<Part>& roots, const std::vecto
       const std::size_t i = stack.back();
       stack.pop_back();
       if (!kept[i]) {
-        parts.push_back(nodes[i].part);
+        parts.push_back({nodes[i].part, nodes[i].measure});
         continue;
       }
       levels = std::max(levels, nodes[i].level + 1);
@@ -185,9 +204,11 @@ std::vector<Part> split_by_cost(const std::vector<Part>& roots, const std::vecto
 /// The parts of the acceptance rules: every part below min_acceptance is split, round by round,
 /// and a small part's split is kept only where it pays (splits_that_pay).
 template <class Measurer>
-std::vector<Part> split_by_acceptance(std::vector<Part> open, std::vector<Measure> measured,
-                                      const Refinement& refinement, const Measurer& measure, std::uint32_t& levels) {
-  std::vector<Part> done, children, next;
+std::vector<MeasuredPart> split_by_acceptance(std::vector<Part> open, std::vector<Measure> measured,
+                                              const Refinement& refinement, const Measurer& measure,
+                                              std::uint32_t& levels) {
+  std::vector<MeasuredPart> done;
+  std::vector<Part> children, next;
   std::vector<Measure> child_measured, next_measured;
   std::uint64_t total = open.size();  // parts, counting every split kept so far
   for (std::uint32_t level = 0; level < refinement.max_levels && !open.empty(); ++level) {
@@ -215,13 +236,24 @@ std::vector<Part> split_by_acceptance(std::vector<Part> open, std::vector<Measur
                            child_measured.begin() + std::ptrdiff_t(4 * k + 4));
     }
     for (std::size_t i = 0; i < open.size(); ++i)
-      if (!kept[i]) done.push_back(open[i]);
+      if (!kept[i]) done.push_back({open[i], measured[i]});
     if (!next.empty()) levels = level + 1;
     open.swap(next);
     measured.swap(next_measured);
   }
-  done.insert(done.end(), open.begin(), open.end());
+  for (std::size_t i = 0; i < open.size(); ++i) done.push_back({open[i], measured[i]});
   return done;
+}
+
+/// The parts, those of each triangle together in triangle order and in their order among
+/// themselves: a counting sort, linear in the parts and the triangles.
+std::vector<MeasuredPart> grouped_by_parent(const std::vector<MeasuredPart>& parts, std::size_t triangles) {
+  std::vector<std::size_t> first(triangles + 1, 0);
+  for (const MeasuredPart& p : parts) ++first[p.part.parent + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<MeasuredPart> grouped(parts.size());
+  for (const MeasuredPart& p : parts) grouped[first[p.part.parent]++] = p;
+  return grouped;
 }
 
 }  // namespace
@@ -233,55 +265,78 @@ RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> m
   std::vector<Part> parts(mesh.indices.size() / 3);
   for (std::uint32_t t = 0; t < parts.size(); ++t) parts[t] = {t, {{0, 0}, {1, 0}, {0, 1}}};
   const auto measure = [&](const std::vector<Part>& tried) {
-    build(mesh, tried);
-    const std::vector<core::TriangleRecord> records = core::make_triangle_records(view(), maps.size());
     std::vector<Measure> out(tried.size());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, tried.size(), 256), [&](const tbb::blocked_range<std::size_t>& r) {
       for (std::size_t i = r.begin(); i < r.end(); ++i) {
-        const core::TexelTriangle texels = core::make_texel_triangle(records[i], input.maps());
-        const core::TriangleIntegral integral = core::integrate_triangle(records[i], texels, input.maps());
-        const double bound = double(integral.max_density) * records[i].area;
-        out[i] = {bound, bound > 0.0 ? integral.expected / bound : 1.0, texel_area(texels), integral.expected};
+        // The part's record as its backend will make it, from the same rounded corners.
+        float positions[3][3], uvs[3][2];
+        part_corners(mesh, tried[i], positions, uvs);
+        const core::TriangleRecord record =
+            core::make_triangle_record(positions, uvs, core::map_of_triangle(mesh, tried[i].parent, maps.size()));
+        const core::TexelTriangle texels = core::make_texel_triangle(record, input.maps());
+        const core::TriangleIntegral integral = core::integrate_triangle(record, texels, input.maps());
+        const double bound = double(integral.max_density) * record.area;
+        out[i] = {bound, bound > 0.0 ? integral.expected / bound : 1.0, texel_area(texels), integral.expected,
+                  integral.max_density};
       }
     });
     return out;
   };
   if (refinement.min_acceptance > 0.0f && refinement.max_levels > 0) {
     std::vector<Measure> measured = measure(parts);
-    parts = splits_by_cost(refinement) ? split_by_cost(parts, measured, refinement, measure, levels_)
-                                       : split_by_acceptance(std::move(parts), std::move(measured), refinement,
-                                                             measure, levels_);
+    // Parts of one triangle side by side: the sampler walks them in order.
+    const std::vector<MeasuredPart> kept = grouped_by_parent(
+        splits_by_cost(refinement) ? split_by_cost(parts, measured, refinement, measure, levels_)
+                                   : split_by_acceptance(std::move(parts), std::move(measured), refinement, measure,
+                                                         levels_),
+        mesh.indices.size() / 3);
+    parts.resize(kept.size());
+    expected_counts_.resize(kept.size());
+    max_density_.resize(kept.size());
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      parts[i] = kept[i].part;
+      expected_counts_[i] = kept[i].measure.expected;
+      max_density_[i] = kept[i].measure.max_density;
+    }
   }
-  // Parts of one triangle side by side: the sampler walks them in order.
-  std::stable_sort(parts.begin(), parts.end(),
-                   [](const Part& a, const Part& b) { return a.parent < b.parent; });
   parts_ = std::move(parts);
-  build(mesh, parts_);
+  build(mesh);
 }
 
-void RefinedMesh::build(const MeshView& mesh, const std::vector<Part>& parts) {
-  positions_.clear();
-  uvs_.clear();
-  indices_.clear();
-  triangle_maps_.clear();
-  for (const Part& part : parts) {
-    const std::uint32_t* v = &mesh.indices[3 * std::size_t(part.parent)];
-    for (const float* b : part.corners) {
-      const double w[3] = {1.0 - double(b[0]) - double(b[1]), b[0], b[1]};
-      for (int axis = 0; axis < 3; ++axis) {
-        double x = 0.0;
-        for (int k = 0; k < 3; ++k) x += w[k] * mesh.positions[3 * std::size_t(v[k]) + axis];
-        positions_.push_back(float(x));
-      }
-      for (int axis = 0; axis < 2; ++axis) {
-        double x = 0.0;
-        for (int k = 0; k < 3; ++k) x += w[k] * mesh.uvs[2 * std::size_t(v[k]) + axis];
-        uvs_.push_back(float(x));
-      }
-      indices_.push_back(std::uint32_t(indices_.size()));
+void RefinedMesh::part_corners(const MeshView& mesh, const Part& part, float (&positions)[3][3], float (&uvs)[3][2]) {
+  const std::uint32_t* v = &mesh.indices[3 * std::size_t(part.parent)];
+  for (int corner = 0; corner < 3; ++corner) {
+    const float* b = part.corners[corner];
+    const double w[3] = {1.0 - double(b[0]) - double(b[1]), b[0], b[1]};
+    for (int axis = 0; axis < 3; ++axis) {
+      double x = 0.0;
+      for (int k = 0; k < 3; ++k) x += w[k] * mesh.positions[3 * std::size_t(v[k]) + axis];
+      positions[corner][axis] = float(x);
     }
-    if (!mesh.triangle_maps.empty()) triangle_maps_.push_back(mesh.triangle_maps[part.parent]);
+    for (int axis = 0; axis < 2; ++axis) {
+      double x = 0.0;
+      for (int k = 0; k < 3; ++k) x += w[k] * mesh.uvs[2 * std::size_t(v[k]) + axis];
+      uvs[corner][axis] = float(x);
+    }
   }
+}
+
+void RefinedMesh::build(const MeshView& mesh) {
+  const std::size_t n = parts_.size();
+  positions_.resize(9 * n);
+  uvs_.resize(6 * n);
+  indices_.resize(3 * n);
+  triangle_maps_.resize(mesh.triangle_maps.empty() ? 0 : n);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      float positions[3][3], uvs[3][2];
+      part_corners(mesh, parts_[i], positions, uvs);
+      std::copy_n(&positions[0][0], 9, &positions_[9 * i]);
+      std::copy_n(&uvs[0][0], 6, &uvs_[6 * i]);
+      for (std::size_t k = 0; k < 3; ++k) indices_[3 * i + k] = std::uint32_t(3 * i + k);
+      if (!triangle_maps_.empty()) triangle_maps_[i] = mesh.triangle_maps[parts_[i].parent];
+    }
+  });
 }
 
 }  // namespace lightsampler

@@ -106,12 +106,14 @@ int run(const Options& options) {
   const MeshData mesh = load_mesh(options.mesh);
   const DensityMap map = load_density_map(options.density, options.map_encoding);
   const lightsampler::DensityMapView map_view = map.view(options.addressing, options.density_scale);
+  const auto construction = std::chrono::steady_clock::now();
   const std::unique_ptr<lightsampler::Sampler> sampler = make_sampler(mesh, map_view, options);
+  const double construction_ms = milliseconds_since(construction);
   lightsampler::Frame frame;
   generate(*sampler, options, frame);
 
   std::optional<double> write_ms;
-  const RunReport report{options, mesh, map, *sampler, frame};
+  const RunReport report{options, mesh, map, *sampler, construction_ms, frame};
   if (ply) {
     const auto start = std::chrono::steady_clock::now();
     write_ply(*ply, mesh, frame.samples.span());

@@ -66,6 +66,8 @@ nlohmann::ordered_json stats_json(const RunReport& run) {
   json["exhausted"] = frame.exhausted;
   json["exact_draws"] = frame.exact_draws;
   json["setup_bytes"] = frame.setup_bytes;
+  const lightsampler::SamplerSetup setup = run.sampler.setup();
+  json["construction"] = {{"ms", run.construction_ms}, {"subdivision_ms", setup.subdivision_ms}, {"parts", setup.parts}};
   json["ms"] = ms;
   json["out"] = run.options.out ? nlohmann::ordered_json(run.options.out->string())
                                 : nlohmann::ordered_json(nullptr);
@@ -99,6 +101,9 @@ void print_summary(std::ostream& out, const RunReport& run, std::optional<double
     out << "acceptance   " << format("%.2f", 100 * *rate) << " % (" << frame.candidates
         << " candidates)\n";
   }
+  const lightsampler::SamplerSetup setup = run.sampler.setup();
+  out << "construction " << format("%.3f", run.construction_ms) << " ms (subdivision "
+      << format("%.3f", setup.subdivision_ms) << " ms, " << setup.parts << " parts)\n";
   out << "time         ";
   for (const lightsampler::PassTime& pass : frame.passes) {
     out << lightsampler::to_string(pass.pass) << " " << format("%.3f", pass.ms) << " ms, ";

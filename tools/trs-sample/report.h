@@ -17,6 +17,7 @@ struct RunReport {
   const MeshData& mesh;
   const DensityMap& map;
   const lightsampler::Sampler& sampler;
+  double construction_ms;  ///< building the sampler, its subdivision (sampler.setup()) included
   const lightsampler::Frame& frame;
 };
 

@@ -32,6 +32,12 @@ inline constexpr float kAutoMinAcceptance = 0.85f;
 /// and then tuned on the light sampler's frame time in trs-render (docs/benchmarks.md).
 inline constexpr float kPartCost = 8.0f;
 
+/// What measuring a part once costs at set-up (its integral and bound, as a count does), in the
+/// work of one candidate: kMeasureCost for the part and kMeasureTexelCost more for each texel
+/// it covers, measured on the CPU backend (docs/benchmarks.md).
+inline constexpr float kMeasureCost = 28.0f;
+inline constexpr float kMeasureTexelCost = 12.0f;
+
 struct Refinement {
   /// Split a triangle while its expected acceptance (mean density over D_T^max) is below this.
   /// 0: no refinement.
@@ -67,6 +73,11 @@ struct Refinement {
   double frame_samples = 0.0;
   /// Cost model: a part's work each frame, in candidates.
   float part_cost = kPartCost;
+  /// Cost model: measuring a part at set-up, in candidates, and more per texel it covers. A split
+  /// is explored only where the candidates one frame could save on it also repay measuring its
+  /// four parts, so that the subdivision's set-up stays below what a frame repays.
+  float measure_cost = kMeasureCost;
+  float measure_texel_cost = kMeasureTexelCost;
   /// Cost model: parts added at most per sample a frame draws.
   float parts_per_sample = 0.5f;
 };
@@ -97,6 +108,11 @@ class RefinedMesh {
   Sample to_parent(const Sample& s) const;
   /// Splitting rounds that split at least one triangle.
   std::uint32_t levels() const { return levels_; }
+  /// Each part's N-bar_T and D_T^max as the subdivision measured them, which is what a counting
+  /// pass over view() gives with the closed form (Sampler::use_counts); empty without a
+  /// refinement. With no split, the caller's triangles' counts.
+  std::span<const double> expected_counts() const { return expected_counts_; }
+  std::span<const float> max_density() const { return max_density_; }
 
   struct Part {
     std::uint32_t parent;
@@ -104,13 +120,18 @@ class RefinedMesh {
   };
 
  private:
-  void build(const MeshView& mesh, const std::vector<Part>& parts);
+  /// A part's corners in the caller's mesh, rounded as the refined mesh stores them.
+  static void part_corners(const MeshView& mesh, const Part& part, float (&positions)[3][3], float (&uvs)[3][2]);
+  /// The refined mesh's vertices and triangles, from parts_.
+  void build(const MeshView& mesh);
 
   std::vector<Part> parts_;
   std::vector<float> positions_;
   std::vector<float> uvs_;
   std::vector<std::uint32_t> indices_;
   std::vector<std::uint32_t> triangle_maps_;
+  std::vector<double> expected_counts_;
+  std::vector<float> max_density_;
   std::uint32_t levels_ = 0;
 };
 

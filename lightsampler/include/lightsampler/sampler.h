@@ -197,6 +197,14 @@ class Sampler {
 
   /// The density maps as this sampler reads them.
   virtual MapQueries maps() const = 0;
+  /// Hands the sampler N-bar_T and D_T^max of its triangles, measured elsewhere exactly as its
+  /// CPU counting pass measures them (the closed form, these maps), as the subdivision does: the
+  /// next frame uses them rather than counting again. A backend that counts on a device ignores
+  /// them; the CPU backend throws std::invalid_argument unless there is one of each per triangle.
+  virtual void use_counts(std::span<const double> expected_counts, std::span<const float> max_density) {
+    (void)expected_counts;
+    (void)max_density;
+  }
 };
 
 struct CpuOptions {

@@ -2,7 +2,9 @@
 // Per-triangle data the CPU passes read: copied from the caller's mesh once, and the
 // texel-space form built each frame (it depends on the maps' sizes).
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -20,6 +22,14 @@ struct TriangleRecord {
   std::uint32_t map;  ///< kNoMap: zero density
 };
 
+/// The map of triangle `t`: its own, else the first (if any).
+inline std::uint32_t map_of_triangle(const MeshView& mesh, std::size_t t, std::size_t map_count) {
+  if (!mesh.triangle_maps.empty()) return mesh.triangle_maps[t];
+  return map_count > 0 ? 0u : kNoMap;
+}
+
+/// The record of a triangle with these corners and map (kNoMap: none).
+TriangleRecord make_triangle_record(const float (&positions)[3][3], const float (&uvs)[3][2], std::uint32_t map);
 std::vector<TriangleRecord> make_triangle_records(const MeshView& mesh, std::size_t map_count);
 
 /// A triangle in its map's texel space, as the realization pass reads it: a point with
@@ -56,6 +66,26 @@ inline std::optional<Texel> texel_triangle_texel(const TexelTriangle& t,
   if (t.map == kNoMap) return std::nullopt;
   const auto [x, y] = texel_space_point(t, b1, b2);
   return cell_texel(maps[t.map], t.map, floor_to_int(x), floor_to_int(y));
+}
+
+/// Whether the point lies so far inside its texel that the same point computed another way (a
+/// part of the triangle with its own corners rounded to floats, and barycentrics mapped between
+/// the two) reads the same texel. Each way rounds a handful of times at the magnitude of the
+/// triangle's texel coordinates, by 2^-24 of it at most each; the margin is 2^-18 of it.
+inline bool clear_of_texel_edges(const TexelTriangle& t, float b1, float b2) {
+  const float magnitude =
+      std::max(std::abs(t.origin[0]) + std::abs(t.edge1[0]) + std::abs(t.edge2[0]),
+               std::abs(t.origin[1]) + std::abs(t.edge1[1]) + std::abs(t.edge2[1]));
+  if (!(magnitude < 0x1p17f)) return false;  // a margin of half a texel or more: nothing is clear
+  const float margin = magnitude * 0x1p-18f;
+  const auto [x, y] = texel_space_point(t, b1, b2);
+  // Distance to the nearest lattice line: adding and removing 1.5 * 2^23 rounds to an integer,
+  // exactly below 2^22 (branch-free, where floor_to_int converts twice).
+  const auto clear = [margin](float v) {
+    constexpr float kRound = 0x1.8p23f;
+    return std::abs(v - ((v + kRound) - kRound)) > margin;
+  };
+  return clear(x) && clear(y);
 }
 
 }  // namespace lightsampler::core

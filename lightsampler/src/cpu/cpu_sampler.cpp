@@ -69,6 +69,20 @@ class CpuSampler final : public Sampler {
 
   MapQueries maps() const override { return MapQueries(scene_); }
 
+  void use_counts(std::span<const double> expected_counts, std::span<const float> max_density) override {
+    if (expected_counts.size() != triangle_count() || max_density.size() != triangle_count())
+      throw std::invalid_argument("use_counts: " + std::to_string(expected_counts.size()) + " counts and " +
+                                  std::to_string(max_density.size()) + " bounds for " +
+                                  std::to_string(triangle_count()) + " triangles");
+    expected_counts_.resize(expected_counts.size());
+    max_density_.resize(max_density.size());
+    std::copy(expected_counts.begin(), expected_counts.end(), expected_counts_.span().begin());
+    std::copy(max_density.begin(), max_density.end(), max_density_.span().begin());
+    expected_total_ = core::sum(expected_counts_.span());
+    counted_ = CountingRule{false, Overlap::closed_form};
+    std::fill(stale_.begin(), stale_.end(), 0);
+  }
+
   void generate(const FrameRequest& request, Frame& frame) override {
     if (request.scan == ScanOrder::lookback)
       throw std::invalid_argument("the lookback scan runs on the Vulkan backend only");
