@@ -183,7 +183,7 @@ Reuse::Reservoir Reuse::combine(std::span<const Input> inputs, PathRandom& rando
     if (!r.y || !(r.W > 0.0f)) continue;
     const float p = i == 0 ? r.target : target(here, *r.y);
     if (!(p > 0.0f)) continue;
-    const float w = weight(inputs, i, p) * p * r.W;
+    const float w = weight(inputs, i, p, out.M) * p * r.W;
     if (!(w > 0.0f) || !std::isfinite(w)) continue;
     sum += w;
     if (lightsampler::uniform_float(random.words()[0]) * sum < w) {
@@ -195,22 +195,18 @@ Reuse::Reservoir Reuse::combine(std::span<const Input> inputs, PathRandom& rando
   return out;
 }
 
-float Reuse::weight(std::span<const Input> inputs, std::size_t i, float p_0) const {
+float Reuse::weight(std::span<const Input> inputs, std::size_t i, float p_0, float total) const {
   switch (options_.weights) {
-    case ReuseOptions::Weights::pairwise: return pairwise(inputs, i, p_0);
+    case ReuseOptions::Weights::pairwise: return pairwise(inputs, i, p_0, total);
     case ReuseOptions::Weights::balance: return balance(inputs, i);
     case ReuseOptions::Weights::uniform: break;
   }
-  float total = 0.0f;
-  for (const Input& in : inputs) total += in.M;
   return inputs[i].M / total;
 }
 
-float Reuse::pairwise(std::span<const Input> inputs, std::size_t i, float p_0) const {
+float Reuse::pairwise(std::span<const Input> inputs, std::size_t i, float p_0, float total) const {
   const std::size_t n = inputs.size() - 1;
   if (n == 0) return 1.0f;
-  float total = 0.0f;
-  for (const Input& in : inputs) total += in.M;
   const float own = inputs[0].M / float(n);  // the pixel's own confidence in each of its n pairs
   // Pair j's share of the weight, and its part of it for the sample held at j (or here).
   const auto pair = [&](std::size_t j, float p_j, bool theirs) {

@@ -98,10 +98,11 @@ class Reuse {
  private:
   struct Input;
   Reservoir combine(std::span<const Input> inputs, PathRandom& random) const;
-  /// Input i's MIS weight for its own sample, given p_0 of it (the target at inputs[0]'s surface).
-  float weight(std::span<const Input> inputs, std::size_t i, float p_0) const;
+  /// Input i's MIS weight for its own sample, given p_0 of it (the target at inputs[0]'s surface)
+  /// and the inputs' total M.
+  float weight(std::span<const Input> inputs, std::size_t i, float p_0, float total) const;
   float balance(std::span<const Input> inputs, std::size_t i) const;
-  float pairwise(std::span<const Input> inputs, std::size_t i, float p_0) const;
+  float pairwise(std::span<const Input> inputs, std::size_t i, float p_0, float total) const;
   /// `y` seen from `at`, its densities those of a unit area density (pdf = 1 / G); none where
   /// it is not seen.
   std::optional<LightLiSample> seen(const Sample& y, const ShadingPoint& at) const;
