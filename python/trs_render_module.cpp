@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "common/relmse.h"
+#include "scene_io/relmse.h"
 #include "lightsampler/backend.h"
 #include "options.h"
 #include "report.h"

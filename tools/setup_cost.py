@@ -24,7 +24,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-PARTS = ["loading", "texture_decoding", "bvh", "emission", "light_sampler", "subdivision", "light_structure",
+PARTS = ["loading", "texture_decoding", "bvh", "emission", "light_sampler", "subdivision", "light_structure", "pilot",
          "first_pass"]
 
 

@@ -7,7 +7,7 @@ that a tool can import this module for commands that read no image.
 """
 
 # Added to reference^2: keeps dark pixels from dominating relMSE. The value trs-imgdiff prints
-# and writes as relmse_guard (tools/common/relmse.h); tests/measure/test_measure.py checks it.
+# and writes as relmse_guard (scene_io/include/scene_io/relmse.h); tests/measure/test_measure.py checks it.
 GUARD = 0.01
 
 

@@ -1,7 +1,7 @@
 // trs-imgdiff: compares a render with a reference, allowing for Monte Carlo noise.
 //
 // Always printed: the relative MSE of the test's luminance against the reference's (per-pixel
-// squared error over reference^2 + a guard, averaged; common/relmse.h) and that guard, then
+// squared error over reference^2 + a guard, averaged; scene_io/relmse.h) and that guard, then
 // RMSE, relMSE and PSNR per channel and over all three. With the variance images trs-render
 // writes (--variance) and both sample counts, it also runs a noise-aware test: the image is cut
 // into tiles, and each tile's mean luminance difference is divided by its standard error (from
@@ -23,7 +23,7 @@
 #include <optional>
 #include <string>
 
-#include "common/relmse.h"
+#include "scene_io/relmse.h"
 #include "scene_io/atomic_file.h"
 #include "scene_io/color.h"
 #include "scene_io/file_error.h"

@@ -22,7 +22,7 @@
 namespace trs {
 namespace {
 
-constexpr const char* kAutoSummary = "ris where the emission varies within the lights, else power";
+constexpr const char* kAutoSummary = "the most efficient of power, trs and ris, by a pilot of a few passes on a grid of the pixels";
 
 /// --strategy's help: every registered strategy (plugins loaded), then auto.
 std::string strategy_help() {

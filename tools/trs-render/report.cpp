@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "common/relmse.h"
+#include "scene_io/relmse.h"
 #include "tracer/strategy_registry.h"
 #include "lightsampler/backend.h"
 
@@ -98,15 +98,26 @@ std::vector<std::pair<const char*, double>> setup_parts(const tracer::RenderResu
           {"light_sampler", t.light_sampler_ms},
           {"subdivision", t.subdivision_ms},
           {"light_structure", t.light_structure_ms},
+          {"pilot", t.pilot_ms},
           {"first_pass", 1000.0 * result.first_pass_seconds}};
 }
 
 /// What `auto` chose and why; null for a strategy named.
 nlohmann::json strategy_choice_json(const tracer::StrategyOptions& asked, const tracer::StrategyChoice& choice) {
   if (asked.kind != tracer::kAutoStrategy) return nullptr;
+  nlohmann::json pilot = nlohmann::json::array();
+  for (const tracer::PilotMeasure& m : choice.pilot)
+    pilot.push_back({{"strategy", m.strategy},
+                     {"relative_variance", m.relative_variance},
+                     {"cost", m.cost},
+                     {"efficiency", m.efficiency},
+                     {"rays_per_path", m.rays_per_path},
+                     {"light_samples_per_path", m.light_samples_per_path},
+                     {"sampler_tries_per_pass", m.sampler_tries_per_pass}});
   return {{"asked", asked.kind},
           {"used", choice.options.kind},
           {"texel_gain", choice.texel_gain},
+          {"pilot", pilot},
           {"reason", choice.reason}};
 }
 
@@ -232,6 +243,7 @@ nlohmann::json current_stats_json(const RenderOptions& options, const tracer::Re
       {"render_seconds", result.render_seconds},
       {"paths", result.paths},
       {"rays", result.rays},
+      {"light_samples", result.light_samples},
       {"paths_per_second", per_second(double(result.paths), result.render_seconds)},
       {"rays_per_second", per_second(double(result.rays), result.render_seconds)},
       {"sampler_ms_per_pass", sampler.mean_ms},

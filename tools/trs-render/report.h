@@ -33,7 +33,7 @@ class ProgressBar {
 double seconds_since(std::chrono::steady_clock::time_point start);
 
 /// Mean over pixels of the per-sample luminance variance relative to the squared mean (plus
-/// relMSE's guard against dark pixels, common/relmse.h): the noise of one sample per pixel.
+/// relMSE's guard against dark pixels, scene_io/relmse.h): the noise of one sample per pixel.
 double relative_variance(const tracer::RenderResult& result);
 
 /// One frame of a sequence: which, and what it took to change the emission to it.

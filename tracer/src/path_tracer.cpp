@@ -116,7 +116,9 @@ PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& ra
     const Vertex vertex{*hit, surface_point(scene_, *hit), -ray.direction};
     const float distance = travelled + hit->distance;
     if (depth == 0 && emitters_.light_of(hit->triangle)) out.sees_emitter = true;
-    sum += throughput * emitted(vertex, bsdf_pdf, depth == 0 ? nullptr : &previous, distance);
+    const glm::vec3 le = throughput * emitted(vertex, bsdf_pdf, depth == 0 ? nullptr : &previous, distance);
+    sum += le;
+    if (depth == 0) out.seen_emission += le;
 
     const Material& material = scene_.materials[vertex.point.material];
     const bool may_pass = pass_through_materials_[vertex.point.material] && crossings < kMaxCrossings;
@@ -130,6 +132,7 @@ PathEstimate PathTracer::radiance(Ray ray, PathRandom& random, std::uint64_t& ra
             sum += throughput * shade(vertex, bsdf, *c, 1.0f, rays);
       } else {
         sum += throughput * light_sample(vertex, bsdf, random, rays);
+        ++out.light_queries;
       }
       const auto u = random.floats();
       s = bsdf.sample(vertex.wo, {u[0], u[1], u[2]});

@@ -19,6 +19,7 @@
 #include "tracer/path_tracer.h"
 #include "tracer/strategy_registry.h"
 #include "reuse.h"
+#include "strategy_choice.h"
 
 namespace tracer {
 namespace {
@@ -122,10 +123,11 @@ struct Renderer::State {
   Clock::time_point geometry_built = Clock::now();
   Emitters emitters;
   Clock::time_point emitters_built = Clock::now();
-  StrategyChoice choice;
-  std::unique_ptr<LightStrategy> strategy;
-  Clock::time_point strategy_built = Clock::now();
   PinholeCamera camera;
+  ChosenStrategy chosen;
+  StrategyChoice& choice = chosen.choice;
+  LightStrategy& strategy;
+  Clock::time_point strategy_built = Clock::now();
   PathTracer tracer;
   /// restir's reservoirs; none for the other strategies, nor where paths do not scatter.
   std::optional<Reuse> reuse;
@@ -138,6 +140,7 @@ struct Renderer::State {
     unsigned passes = 0;
     double seconds = 0.0;
     std::uint64_t rays = 0;
+    std::uint64_t light_queries = 0;
     std::uint64_t invalid_paths = 0;
   };
   std::optional<Sums> sums;
@@ -148,13 +151,13 @@ struct Renderer::State {
         frame(f),
         geometry(s),
         emitters(s, sampler_options(r), f, animation_seconds(f, r.fps)),
-        choice(choose_strategy(lit(emitters, s), r.strategy)),
-        strategy(make_light_strategy(emitters, choice.options)),
         camera(scene_camera(s), r.width, r.height),
-        tracer(s, geometry, emitters, *strategy, r.max_depth) {
-    const ReuseOptions* options = reuse_of(*strategy);
+        chosen(choose_strategy(s, geometry, lit(emitters, s), camera, r)),
+        strategy(*chosen.strategy),
+        tracer(s, geometry, emitters, strategy, r.max_depth) {
+    const ReuseOptions* options = reuse_of(strategy);
     if (options && r.max_depth > 0)  // without scattering nothing is lit by a light sample
-      reuse.emplace(tracer, emitters, *strategy, *options, r.width, r.height);
+      reuse.emplace(tracer, emitters, strategy, *options, r.width, r.height);
   }
 };
 
@@ -179,7 +182,7 @@ EmissionUpdate Renderer::set_frame(std::int64_t frame) {
   EmissionUpdate update = s.emitters.set_frame(frame, animation_seconds(frame, s.settings.fps));
   if (update.changed()) {
     const auto start = Clock::now();
-    s.strategy->emission_changed();
+    s.strategy.emission_changed();
     update.strategy_ms = 1000.0 * seconds_since(start);
   }
   return update;
@@ -209,13 +212,13 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   const lightsampler::PhiloxKey gather_key = path_key(frame_seed ^ kGatherStream);
   const lightsampler::PhiloxKey spatial_key = path_key(frame_seed ^ kSpatialStream);
   if (!s.sums) {
-    s.sums.emplace(State::Sums{Accumulator(pixels), {}, {}, 0, 0.0, 0, 0});
+    s.sums.emplace(State::Sums{Accumulator(pixels), {}, {}, 0, 0.0, 0, 0, 0});
     if (s.reuse) s.reuse->reset();
   }
   State::Sums& sums = *s.sums;
 
   std::vector<PathEstimate> pass(pixels);
-  tbb::combinable<std::uint64_t> rays, invalid;
+  tbb::combinable<std::uint64_t> rays, queries, invalid;
   const auto start = Clock::now();
   const unsigned first = sums.passes;
   const unsigned end = first + std::min(count, std::numeric_limits<unsigned>::max() - first);
@@ -227,7 +230,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
     }
     // The light sets of animation frames apart as their paths are: frame 0's are a still's.
     const auto pass_start = Clock::now();
-    s.strategy->begin_pass(pass_seed(settings.seed, std::uint64_t(s.frame) << 32 | f));
+    s.strategy.begin_pass(pass_seed(settings.seed, std::uint64_t(s.frame) << 32 | f));
     /// Pixel (x, y)'s camera ray this pass, from the first words of its path's stream.
     const auto camera_ray = [&](unsigned x, unsigned y, PathRandom& random) {
       const auto jitter = random.floats();
@@ -255,6 +258,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
       std::optional<PathTracer::FirstSurface> first;
       if (s.reuse) first = s.reuse->first_surface(pixel);
       PathEstimate e = tracer.radiance(ray, random, rays.local(), first ? &*first : nullptr);
+      queries.local() += e.light_queries;
       const glm::vec3& l = e.radiance;
       if (!std::isfinite(l.r + l.g + l.b)) {
         ++invalid.local();
@@ -268,7 +272,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
     }
     s.geometry.throw_if_failed();
     sums.pixels.add(pass);
-    sums.light_passes.push_back(s.strategy->last_pass());
+    sums.light_passes.push_back(s.strategy.last_pass());
     sums.passes = f + 1;
     if (f == 0) s.first_pass_seconds = seconds_since(pass_start);
     if (progress) progress(f + 1 - first, end - first);
@@ -276,6 +280,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   }
   sums.seconds += seconds_since(start);
   sums.rays += rays.combine(std::plus<>());
+  sums.light_queries += queries.combine(std::plus<>());
   sums.invalid_paths += invalid.combine(std::plus<>());
 
   RenderResult result;
@@ -288,13 +293,13 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   };
   result.setup = {1000.0 * (s.scene.load_seconds - s.scene.texture_decode_seconds), 1000.0 * s.scene.texture_decode_seconds,
                   ms(s.start, s.geometry_built), lights.emission_ms, lights.sampler_ms, lights.subdivision_ms,
-                  ms(s.emitters_built, s.strategy_built), lights.sampler_parts};
+                  ms(s.emitters_built, s.strategy_built) - s.chosen.pilot_ms, s.chosen.pilot_ms, lights.sampler_parts};
   result.first_pass_seconds = s.first_pass_seconds;
-  result.strategy = s.strategy->name();
+  result.strategy = s.strategy.name();
   result.strategy_choice = s.choice;
   result.punctual_lights = s.emitters.punctual().count();
-  result.light_device = s.strategy->device();
-  result.light_structure = s.strategy->setup();
+  result.light_device = s.strategy.device();
+  result.light_structure = s.strategy.setup();
   result.passes = sums.passes;
   result.light_passes = sums.light_passes;
   result.reuse_ms = sums.reuse_ms;
@@ -302,6 +307,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   result.interrupted = cancelled;
   result.paths = std::uint64_t(result.passes) * pixels;
   result.rays = sums.rays;
+  result.light_samples = sums.light_queries * s.strategy.candidates();
   result.invalid_paths = sums.invalid_paths;
   sums.pixels.finish(result.passes, result);
   return result;

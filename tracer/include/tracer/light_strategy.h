@@ -112,8 +112,8 @@ struct TreeOptions {
 };
 
 struct StrategyOptions {
-  /// A registered strategy's name (strategy_registry.h), or `auto`: ris or power, as the scene's
-  /// emission calls for (docs/noise.md).
+  /// A registered strategy's name (strategy_registry.h), or `auto`: the most efficient of
+  /// kPilotStrategies on the scene, by a pilot (Renderer; docs/noise.md).
   std::string kind = "auto";
   double lights = 1e6;          ///< trs (and ris over it): expected point lights per pass (N_target)
   unsigned candidates = kDefaultCandidates;  ///< ris: points resampled per shading point
@@ -138,9 +138,26 @@ bool draws_point_lights(const StrategyOptions& options);
 /// resample itself.
 bool resamplable(const std::string& name);
 
-/// `auto` takes `ris` over `trs` where the emission varies within the lights by at least this
-/// texel gain (StrategyChoice), and `power` below it (docs/noise.md, "The default").
-inline constexpr double kAutoTexelGain = 1.5;
+/// One strategy as `auto`'s pilot measured it: a few passes over a grid of the image's pixels,
+/// with seeds of the pilot's own.
+struct PilotMeasure {
+  std::string strategy;
+  /// The noise of one pass: per pixel, the variance of a path's luminance over the square of
+  /// the pixel's mean (every strategy's pilot passes pooled) plus relMSE's guard
+  /// (scene_io/relmse.h), averaged over the pilot's pixels. One pass's expected relMSE.
+  double relative_variance = 0.0;
+  /// A pass's work over the whole image, in rays: rays traced, light samples weighed and the
+  /// light sampler's tries, each at its unit cost (kPilotLightSampleCost, kPilotSamplerTryCost).
+  double cost = 0.0;
+  double efficiency = 0.0;  ///< 1 / (relative_variance * cost)
+  double rays_per_path = 0.0;
+  double light_samples_per_path = 0.0;  ///< next-event queries times the strategy's candidates
+  double sampler_tries_per_pass = 0.0;  ///< candidates the light sampler's rejection loops tried
+};
+
+/// The strategies `auto`'s pilot weighs: between them they were the most efficient at equal time
+/// on every scene measured (docs/noise.md, "The default chooses by a pilot").
+inline constexpr const char* kPilotStrategies[] = {"power", "trs", "ris"};
 
 /// The strategy that renders, and for `auto` why it was chosen.
 struct StrategyChoice {
@@ -148,16 +165,11 @@ struct StrategyChoice {
   /// auto: how much a point drawn by the texels gains over one drawn uniformly on its light, per
   /// sample: E[D(x) / mean density of x's light] for x drawn with density D, 1 where the
   /// emission is flat on every light (the ratio of the two draws' second moments when the
-  /// lights' emission dominates). 0 for the other strategies.
+  /// lights' emission dominates). 0 for the other strategies. Reported, not chosen by.
   double texel_gain = 0.0;
+  std::vector<PilotMeasure> pilot;  ///< auto: each strategy the pilot weighed; empty otherwise
   std::string reason;  ///< auto: the choice in a sentence; empty for the others
 };
-
-/// The strategy `options` names; for `auto`, `ris` over `trs` where texel_gain reaches
-/// kAutoTexelGain (the texture decides), else `power` (drawing by the texels gains too little
-/// for its cost). The gain is measured on a frame of the emitters' light sampler, with a fixed
-/// seed: every seed of a scene renders with the same strategy.
-StrategyChoice choose_strategy(Emitters& emitters, const StrategyOptions& options);
 
 /// The strategy `options` names, made by its registered definition. Throws std::invalid_argument
 /// when the scene has no lights or `options` names no registered strategy (`auto`: choose first).

@@ -5,6 +5,7 @@
 // no BSDF sample finds; there is no environment. Smooth thin transmissive surfaces let paths and
 // shadow rays straight through (Bsdf::pass_through); volumes absorb along the segments inside them.
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -31,6 +32,12 @@ inline float power_heuristic(float a, float b) {
 struct PathEstimate {
   glm::vec3 radiance{0.0f};
   bool sees_emitter = false;  ///< the camera ray's first hit is an emitter
+  /// The part of `radiance` emitted where the camera ray met a surface (straight through panes):
+  /// no light sample takes part in it, so its noise is the same whatever the strategy.
+  glm::vec3 seen_emission{0.0f};
+  /// Next-event queries the strategy answered along the path, each with strategy.candidates()
+  /// light samples weighed: the work `auto`'s pilot counts.
+  std::uint32_t light_queries = 0;
 };
 
 /// The first surface a camera ray meets, where `restir` keeps its pixel's reservoir: the point

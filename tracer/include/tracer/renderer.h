@@ -58,6 +58,7 @@ struct SetupTimes {
   double light_sampler_ms = 0.0;    ///< the light sampler's construction and first count
   double subdivision_ms = 0.0;      ///< the light sampler's subdivision
   double light_structure_ms = 0.0;  ///< the strategy's own structure (the tree, alias tables)
+  double pilot_ms = 0.0;            ///< `auto`: its pilot passes, and the texel gain's frame
   std::uint64_t sampler_parts = 0;  ///< triangles the light sampler samples
 };
 
@@ -83,6 +84,9 @@ struct RenderResult {
   double render_seconds = 0.0;        ///< the passes, light sampling included
   std::uint64_t paths = 0;
   std::uint64_t rays = 0;             ///< closest-hit and shadow rays traced
+  /// Light samples weighed for next-event estimation: queries times the strategy's candidates
+  /// (restir's reuse not counted).
+  std::uint64_t light_samples = 0;
   std::uint64_t invalid_paths = 0;    ///< paths with a NaN or infinite estimate, counted as black
   bool interrupted = false;           ///< stopped early by the cancel flag (not by the deadline)
   std::string strategy;               ///< the strategy that rendered

@@ -1,0 +1,163 @@
+// `auto`'s choice by a pilot (tracer/src/strategy_choice.cpp): each of power, trs and ris renders
+// a few passes over a grid of the image's pixels, and the one of least relative variance times
+// counted work per pass renders the image.
+//
+// The pilot is deterministic (its seed is its own, its work counted rather than timed), so these
+// tests are exact checks of its outcome on three floors, each lit so that one thing decides:
+//   - the texture: a panel whose texels are 90% black. Drawing uniformly on it (power) wastes 9 of
+//     10 samples, so power's efficiency must be below half the best, and power not chosen;
+//   - orientation: two equal emitters above the floor, one facing it, one facing away. Drawing by
+//     power or by the texels picks the one facing away half the time, while ris' four candidates
+//     nearly always hold the other: ris must be chosen, at least 1.5 times as efficient as power;
+//   - cost: one small emitter far above the floor, flat, whose samples all bring about the same,
+//     and 100,000 point lights asked a pass (a render of 768 pixels): the point lights that trs
+//     and ris draw each pass cost more than the paths, so power must be chosen, trs below half
+//     its efficiency.
+// A pilot that weighed noise alone would choose ris on the third floor; one that weighed cost
+// alone, power on the first two.
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <string>
+
+#include "scene_builder.h"
+#include "tracer/renderer.h"
+#include "tracer/strategy_registry.h"
+
+namespace {
+
+using namespace tracer;
+
+constexpr unsigned kWidth = 32, kHeight = 24;
+
+Scene floor_scene() {
+  Scene scene;
+  trs_test::add_quad(scene, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3},
+                     trs_test::add_material(scene, trs_test::matte(glm::vec3(0.8f), 0.6f)));
+  scene.camera = Camera{.position = {0, 3.5f, 0}, .forward = {0, -1, 0}, .up = {0, 0, -1}, .yfov = 0.9f};
+  return scene;
+}
+
+/// An emissive quad of half-size `h` at height `y`, facing down (towards the floor) or up.
+void add_ceiling_light(Scene& scene, float h, float y, bool facing_down, glm::vec3 emission) {
+  Material m;
+  m.emissive_factor = emission;
+  const std::uint32_t material = trs_test::add_material(scene, m);
+  if (facing_down)
+    trs_test::add_quad(scene, {-h, y, h}, {-h, y, -h}, {h, y, -h}, {h, y, h}, material);
+  else
+    trs_test::add_quad(scene, {-h, y, h}, {h, y, h}, {h, y, -h}, {-h, y, -h}, material);
+}
+
+Scene sparse_panel() {
+  Scene scene = floor_scene();
+  Material panel;
+  panel.emissive_factor = glm::vec3(2.0f);
+  panel.emissive_texture.texture = trs_test::add_random_texture(scene, 16, 16, 0.9, 7);
+  trs_test::add_quad(scene, {0, 0.05f, 1}, {0, 0.05f, -1}, {0, 1.2f, -1}, {0, 1.2f, 1},
+                     trs_test::add_material(scene, panel));
+  return scene;
+}
+
+Scene facing_away() {
+  Scene scene = floor_scene();
+  add_ceiling_light(scene, 1.0f, 5.0f, true, glm::vec3(1.0f));
+  add_ceiling_light(scene, 1.0f, 5.2f, false, glm::vec3(1.0f));
+  return scene;
+}
+
+Scene small_far_light() {
+  Scene scene = floor_scene();
+  add_ceiling_light(scene, 0.05f, 8.0f, true, glm::vec3(100.0f));
+  return scene;
+}
+
+RenderSettings settings(std::uint64_t seed = 1, unsigned threads = 2) {
+  RenderSettings s;
+  s.width = kWidth;
+  s.height = kHeight;
+  s.spp = 2;
+  s.max_depth = 1;
+  s.seed = seed;
+  s.threads = threads;
+  s.strategy.kind = kAutoStrategy;
+  s.strategy.lights = auto_lights(kWidth, kHeight, s.max_depth);
+  s.sampler = trs_test::kCpuSampler;
+  return s;
+}
+
+RenderResult render(const Scene& scene, const RenderSettings& s) {
+  const std::atomic<bool> cancel{false};
+  return Renderer(scene, s).render({}, cancel);
+}
+
+const PilotMeasure& measure_of(const StrategyChoice& choice, const std::string& strategy) {
+  for (const PilotMeasure& m : choice.pilot)
+    if (m.strategy == strategy) return m;
+  throw std::runtime_error("no pilot measure of " + strategy);
+}
+
+/// Each strategy's efficiency over the chosen one's, for failure messages.
+std::string efficiencies(const StrategyChoice& choice) {
+  std::string text = "chose " + choice.options.kind + ":";
+  const double best = measure_of(choice, choice.options.kind).efficiency;
+  for (const PilotMeasure& m : choice.pilot) text += " " + m.strategy + " " + std::to_string(m.efficiency / best);
+  return text;
+}
+
+TEST(StrategyChoice, TheTextureDecides) {
+  const StrategyChoice choice = render(sparse_panel(), settings()).strategy_choice;
+  ASSERT_EQ(choice.pilot.size(), std::size(kPilotStrategies));
+  EXPECT_NE(choice.options.kind, "power") << efficiencies(choice);
+  EXPECT_LT(measure_of(choice, "power").efficiency, 0.5 * measure_of(choice, choice.options.kind).efficiency)
+      << efficiencies(choice);
+}
+
+TEST(StrategyChoice, OrientationDecides) {
+  const StrategyChoice choice = render(facing_away(), settings()).strategy_choice;
+  EXPECT_EQ(choice.options.kind, "ris") << efficiencies(choice);
+  EXPECT_GT(measure_of(choice, "ris").efficiency, 1.5 * measure_of(choice, "power").efficiency)
+      << efficiencies(choice);
+}
+
+TEST(StrategyChoice, CostDecides) {
+  RenderSettings s = settings();
+  s.strategy.lights = 1e5;
+  const StrategyChoice choice = render(small_far_light(), s).strategy_choice;
+  EXPECT_EQ(choice.options.kind, "power") << efficiencies(choice);
+  EXPECT_LT(measure_of(choice, "trs").efficiency, 0.5 * measure_of(choice, "power").efficiency)
+      << efficiencies(choice);
+}
+
+// The pilot's seeds are its own and its work is counted: every seed and thread count gives the
+// same choice from the same figures, bit for bit.
+TEST(StrategyChoice, TheSameForEverySeedAndThreadCount) {
+  const Scene scene = sparse_panel();
+  const StrategyChoice a = render(scene, settings(1, 2)).strategy_choice;
+  for (const auto& [seed, threads] : {std::pair{2ull, 2u}, std::pair{1ull, 1u}}) {
+    const StrategyChoice b = render(scene, settings(seed, threads)).strategy_choice;
+    EXPECT_EQ(b.options.kind, a.options.kind);
+    ASSERT_EQ(b.pilot.size(), a.pilot.size());
+    for (std::size_t i = 0; i < a.pilot.size(); ++i) {
+      EXPECT_EQ(b.pilot[i].relative_variance, a.pilot[i].relative_variance) << a.pilot[i].strategy;
+      EXPECT_EQ(b.pilot[i].cost, a.pilot[i].cost) << a.pilot[i].strategy;
+    }
+    EXPECT_EQ(b.reason, a.reason);
+  }
+}
+
+// The pilot's paths stay out of the image: `auto` renders as the strategy it chose, bit for bit.
+TEST(StrategyChoice, RendersAsTheStrategyItChose) {
+  for (const Scene& scene : {sparse_panel(), facing_away(), small_far_light()}) {
+    const RenderResult chosen = render(scene, settings(3));
+    RenderSettings named = settings(3);
+    named.strategy.kind = chosen.strategy_choice.options.kind;
+    const RenderResult direct = render(scene, named);
+    EXPECT_EQ(chosen.strategy, direct.strategy);
+    EXPECT_EQ(chosen.rgb, direct.rgb) << chosen.strategy;
+    EXPECT_TRUE(direct.strategy_choice.pilot.empty());
+  }
+}
+
+}  // namespace
