@@ -124,11 +124,12 @@ struct Renderer::State {
   Emitters emitters;
   Clock::time_point emitters_built = Clock::now();
   PinholeCamera camera;
+  /// The strategy; `auto` chooses again at each animation frame whose emission changed, so that
+  /// every frame renders as its still.
   ChosenStrategy chosen;
-  StrategyChoice& choice = chosen.choice;
-  LightStrategy& strategy;
+  double setup_pilot_ms = chosen.pilot_ms;  ///< the set-up's pilot (`auto`)
   Clock::time_point strategy_built = Clock::now();
-  PathTracer tracer;
+  std::optional<PathTracer> tracer;
   /// restir's reservoirs; none for the other strategies, nor where paths do not scatter.
   std::optional<Reuse> reuse;
   double first_pass_seconds = 0.0;  ///< of the passes of this animation frame
@@ -152,13 +153,14 @@ struct Renderer::State {
         geometry(s),
         emitters(s, sampler_options(r), f, animation_seconds(f, r.fps)),
         camera(scene_camera(s), r.width, r.height),
-        chosen(choose_strategy(s, geometry, lit(emitters, s), camera, r)),
-        strategy(*chosen.strategy),
-        tracer(s, geometry, emitters, strategy, r.max_depth) {
-    const ReuseOptions* options = reuse_of(strategy);
+        chosen(choose_strategy(s, geometry, lit(emitters, s), camera, r)) {
+    tracer.emplace(s, geometry, emitters, *chosen.strategy, r.max_depth);
+    const ReuseOptions* options = reuse_of(*chosen.strategy);
     if (options && r.max_depth > 0)  // without scattering nothing is lit by a light sample
-      reuse.emplace(tracer, emitters, strategy, *options, r.width, r.height);
+      reuse.emplace(*tracer, emitters, *chosen.strategy, *options, r.width, r.height);
   }
+
+  LightStrategy& strategy() const { return *chosen.strategy; }
 };
 
 Renderer::Renderer(const Scene& scene, const RenderSettings& settings, std::int64_t frame) {
@@ -182,7 +184,13 @@ EmissionUpdate Renderer::set_frame(std::int64_t frame) {
   EmissionUpdate update = s.emitters.set_frame(frame, animation_seconds(frame, s.settings.fps));
   if (update.changed()) {
     const auto start = Clock::now();
-    s.strategy.emission_changed();
+    if (s.settings.strategy.kind == kAutoStrategy) {  // auto never chooses restir: no reuse to remake
+      s.tracer.reset();
+      s.chosen = choose_strategy(s.scene, s.geometry, s.emitters, s.camera, s.settings);
+      s.tracer.emplace(s.scene, s.geometry, s.emitters, *s.chosen.strategy, s.settings.max_depth);
+    } else {
+      s.strategy().emission_changed();
+    }
     update.strategy_ms = 1000.0 * seconds_since(start);
   }
   return update;
@@ -206,7 +214,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   if (settings.threads > 0)
     limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
   const std::size_t pixels = std::size_t(settings.width) * settings.height;
-  const PathTracer& tracer = s.tracer;
+  const PathTracer& tracer = *s.tracer;
   const std::uint64_t frame_seed = settings.seed ^ lightsampler::mix64(std::uint64_t(s.frame));
   const lightsampler::PhiloxKey key = path_key(frame_seed);
   const lightsampler::PhiloxKey gather_key = path_key(frame_seed ^ kGatherStream);
@@ -230,7 +238,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
     }
     // The light sets of animation frames apart as their paths are: frame 0's are a still's.
     const auto pass_start = Clock::now();
-    s.strategy.begin_pass(pass_seed(settings.seed, std::uint64_t(s.frame) << 32 | f));
+    s.strategy().begin_pass(pass_seed(settings.seed, std::uint64_t(s.frame) << 32 | f));
     /// Pixel (x, y)'s camera ray this pass, from the first words of its path's stream.
     const auto camera_ray = [&](unsigned x, unsigned y, PathRandom& random) {
       const auto jitter = random.floats();
@@ -272,7 +280,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
     }
     s.geometry.throw_if_failed();
     sums.pixels.add(pass);
-    sums.light_passes.push_back(s.strategy.last_pass());
+    sums.light_passes.push_back(s.strategy().last_pass());
     sums.passes = f + 1;
     if (f == 0) s.first_pass_seconds = seconds_since(pass_start);
     if (progress) progress(f + 1 - first, end - first);
@@ -293,13 +301,13 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   };
   result.setup = {1000.0 * (s.scene.load_seconds - s.scene.texture_decode_seconds), 1000.0 * s.scene.texture_decode_seconds,
                   ms(s.start, s.geometry_built), lights.emission_ms, lights.sampler_ms, lights.subdivision_ms,
-                  ms(s.emitters_built, s.strategy_built) - s.chosen.pilot_ms, s.chosen.pilot_ms, lights.sampler_parts};
+                  ms(s.emitters_built, s.strategy_built) - s.setup_pilot_ms, s.setup_pilot_ms, lights.sampler_parts};
   result.first_pass_seconds = s.first_pass_seconds;
-  result.strategy = s.strategy.name();
-  result.strategy_choice = s.choice;
+  result.strategy = s.strategy().name();
+  result.strategy_choice = s.chosen.choice;
   result.punctual_lights = s.emitters.punctual().count();
-  result.light_device = s.strategy.device();
-  result.light_structure = s.strategy.setup();
+  result.light_device = s.strategy().device();
+  result.light_structure = s.strategy().setup();
   result.passes = sums.passes;
   result.light_passes = sums.light_passes;
   result.reuse_ms = sums.reuse_ms;
@@ -307,7 +315,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   result.interrupted = cancelled;
   result.paths = std::uint64_t(result.passes) * pixels;
   result.rays = sums.rays;
-  result.light_samples = sums.light_queries * s.strategy.candidates();
+  result.light_samples = sums.light_queries * s.strategy().candidates();
   result.invalid_paths = sums.invalid_paths;
   sums.pixels.finish(result.passes, result);
   return result;

@@ -180,7 +180,12 @@ std::string pilot_reason(const std::vector<PilotMeasure>& pilot, const PilotMeas
 ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emitters& emitters,
                                const PinholeCamera& camera, const RenderSettings& settings) {
   const StrategyOptions& options = settings.strategy;
-  if (options.kind != kAutoStrategy) return {{options, 0.0, {}, {}}, make_light_strategy(emitters, options)};
+  if (options.kind != kAutoStrategy) {
+    // Made before the aggregate: GCC 12 destroys a braced return value's members twice when one
+    // of them throws as it is built.
+    std::unique_ptr<LightStrategy> strategy = make_light_strategy(emitters, options);
+    return {{options, 0.0, {}, {}}, std::move(strategy)};
+  }
   const auto start = std::chrono::steady_clock::now();
   ChosenStrategy chosen{{options, 1.0, {}, {}}, nullptr};
   StrategyChoice& choice = chosen.choice;
