@@ -18,31 +18,20 @@ Markdown table and the medians; writes a CSV.
 """
 import argparse
 import csv
-import json
 import statistics
-import subprocess
-import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from setup_cost import scene_files
+from setup_cost import render_stats, scene_files
 
 STRATEGIES = ["power", "trs", "ris"]
 
 
 def measure(render, scene, settings, strategy, args, work):
-    stats = work / "stats.json"
-    command = [render, str(scene), "--out", str(work / "image.exr"), "--stats", str(stats), "--quiet",
-               "--spp", str(args.spp), "--width", str(args.width), "--height", str(args.height),
-               "--max-depth", str(args.max_depth), "--strategy", strategy, "--threads", str(args.threads)]
-    if settings.exists():
-        command[2:2] = ["--settings", str(settings)]
-    result = subprocess.run(command, capture_output=True, text=True)
-    if result.returncode != 0:
-        sys.exit(f"pilot_costs: {' '.join(command)} failed:\n{result.stderr}")
-    s = json.loads(stats.read_text())
+    s = render_stats("pilot_costs", render, scene, settings, ["--strategy", strategy, "--threads", str(args.threads)],
+                     args, work)
     passes = max(s["passes"], 1)
     acceptance = s["acceptance_rate"] or 0.0
     return {"tracing_ms": s["tracing_ms_per_pass"],

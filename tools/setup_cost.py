@@ -45,17 +45,23 @@ def scene_files(folder):
     return folder / f"{folder.name}.gltf", folder / "render.toml"
 
 
-def measure(render, scene, settings, config, args, work):
+def render_stats(tool, render, scene, settings, options, args, work):
+    """trs-render's stats of `scene` rendered with --spp, --width, --height and --max-depth of
+    `args` and `options`; exits naming `tool` and the command if the render fails."""
     stats = work / "stats.json"
     command = [render, str(scene), "--out", str(work / "image.exr"), "--stats", str(stats), "--quiet",
                "--spp", str(args.spp), "--width", str(args.width), "--height", str(args.height),
-               "--max-depth", str(args.max_depth), *config_options(config)]
+               "--max-depth", str(args.max_depth), *options]
     if settings.exists():
         command[2:2] = ["--settings", str(settings)]
     result = subprocess.run(command, capture_output=True, text=True)
     if result.returncode != 0:
-        sys.exit(f"setup_cost: {shlex.join(command)} failed:\n{result.stderr}")
-    s = json.loads(stats.read_text())
+        sys.exit(f"{tool}: {shlex.join(command)} failed:\n{result.stderr}")
+    return json.loads(stats.read_text())
+
+
+def measure(render, scene, settings, config, args, work):
+    s = render_stats("setup_cost", render, scene, settings, config_options(config), args, work)
     row = {f"{part}_ms": s["setup_ms"][part] for part in PARTS}
     row["setup_ms"] = sum(s["setup_ms"][part] for part in PARTS if part != "first_pass")
     row["parts"] = s["light_sampler_parts"]

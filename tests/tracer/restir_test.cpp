@@ -39,19 +39,11 @@ using namespace tracer;
 constexpr unsigned kWidth = 24, kHeight = 16, kPasses = 8, kSeeds = 40;
 
 Scene panel_on_floor() {
-  Scene scene;
-  trs_test::add_quad(scene, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3},
-                     trs_test::add_material(scene, trs_test::matte(glm::vec3(0.8f), 0.6f)));
-  Material panel;
-  panel.emissive_factor = glm::vec3(2.0f);
-  panel.emissive_texture.texture = trs_test::add_random_texture(scene, 8, 8, 0.3, 7);
-  // Facing +x (counter-clockwise seen from there): the floor at x < 0 sees its back.
-  trs_test::add_quad(scene, {0, 0.05f, 1}, {0, 0.05f, -1}, {0, 1.2f, -1}, {0, 1.2f, 1},
-                     trs_test::add_material(scene, panel));
+  Scene scene = trs_test::floor_seen_from_above();
+  trs_test::add_standing_panel(scene, 8, 0.3);
   Material sky;
   sky.emissive_factor = glm::vec3(0.3f);
   trs_test::add_quad(scene, {-1, 5, 1}, {-1, 5, -1}, {1, 5, -1}, {1, 5, 1}, trs_test::add_material(scene, sky));
-  scene.camera = Camera{.position = {0, 3.5f, 0}, .forward = {0, -1, 0}, .up = {0, 0, -1}, .yfov = 0.9f};
   return scene;
 }
 

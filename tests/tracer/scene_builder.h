@@ -59,4 +59,22 @@ inline std::int32_t add_random_texture(tracer::Scene& scene, std::uint32_t width
   return std::int32_t(scene.textures.size() - 1);
 }
 
+/// A 6 x 6 matte floor at y = 0, seen from 3.5 above, looking down: the lighting tests' stage.
+inline tracer::Scene floor_seen_from_above() {
+  tracer::Scene scene;
+  add_quad(scene, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3}, add_material(scene, matte(glm::vec3(0.8f), 0.6f)));
+  scene.camera = tracer::Camera{.position = {0, 3.5f, 0}, .forward = {0, -1, 0}, .up = {0, 0, -1}, .yfov = 0.9f};
+  return scene;
+}
+
+/// A one-sided emissive panel standing on that floor at x = 0, facing +x (counter-clockwise seen
+/// from there: the floor at x < 0 sees its back), textured with `texels` x `texels` random
+/// colours, `zero_fraction` of them black.
+inline void add_standing_panel(tracer::Scene& scene, std::uint32_t texels, double zero_fraction) {
+  tracer::Material panel;
+  panel.emissive_factor = glm::vec3(2.0f);
+  panel.emissive_texture.texture = add_random_texture(scene, texels, texels, zero_fraction, 7);
+  add_quad(scene, {0, 0.05f, 1}, {0, 0.05f, -1}, {0, 1.2f, -1}, {0, 1.2f, 1}, add_material(scene, panel));
+}
+
 }  // namespace trs_test

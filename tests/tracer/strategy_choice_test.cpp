@@ -31,14 +31,6 @@ using namespace tracer;
 
 constexpr unsigned kWidth = 32, kHeight = 24;
 
-Scene floor_scene() {
-  Scene scene;
-  trs_test::add_quad(scene, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3},
-                     trs_test::add_material(scene, trs_test::matte(glm::vec3(0.8f), 0.6f)));
-  scene.camera = Camera{.position = {0, 3.5f, 0}, .forward = {0, -1, 0}, .up = {0, 0, -1}, .yfov = 0.9f};
-  return scene;
-}
-
 /// An emissive quad of half-size `h` at height `y`, facing down (towards the floor) or up.
 void add_ceiling_light(Scene& scene, float h, float y, bool facing_down, glm::vec3 emission) {
   Material m;
@@ -51,24 +43,20 @@ void add_ceiling_light(Scene& scene, float h, float y, bool facing_down, glm::ve
 }
 
 Scene sparse_panel() {
-  Scene scene = floor_scene();
-  Material panel;
-  panel.emissive_factor = glm::vec3(2.0f);
-  panel.emissive_texture.texture = trs_test::add_random_texture(scene, 16, 16, 0.9, 7);
-  trs_test::add_quad(scene, {0, 0.05f, 1}, {0, 0.05f, -1}, {0, 1.2f, -1}, {0, 1.2f, 1},
-                     trs_test::add_material(scene, panel));
+  Scene scene = trs_test::floor_seen_from_above();
+  trs_test::add_standing_panel(scene, 16, 0.9);
   return scene;
 }
 
 Scene facing_away() {
-  Scene scene = floor_scene();
+  Scene scene = trs_test::floor_seen_from_above();
   add_ceiling_light(scene, 1.0f, 5.0f, true, glm::vec3(1.0f));
   add_ceiling_light(scene, 1.0f, 5.2f, false, glm::vec3(1.0f));
   return scene;
 }
 
 Scene small_far_light() {
-  Scene scene = floor_scene();
+  Scene scene = trs_test::floor_seen_from_above();
   add_ceiling_light(scene, 0.05f, 8.0f, true, glm::vec3(100.0f));
   return scene;
 }

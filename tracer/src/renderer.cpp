@@ -18,6 +18,7 @@
 #include "tracer/geometry.h"
 #include "tracer/path_tracer.h"
 #include "tracer/strategy_registry.h"
+#include "pixel_ray.h"
 #include "reuse.h"
 #include "strategy_choice.h"
 
@@ -239,18 +240,13 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
     // The light sets of animation frames apart as their paths are: frame 0's are a still's.
     const auto pass_start = Clock::now();
     s.strategy().begin_pass(pass_seed(settings.seed, std::uint64_t(s.frame) << 32 | f));
-    /// Pixel (x, y)'s camera ray this pass, from the first words of its path's stream.
-    const auto camera_ray = [&](unsigned x, unsigned y, PathRandom& random) {
-      const auto jitter = random.floats();
-      return s.camera.ray(float(x) + jitter[0], float(y) + jitter[1]);
-    };
     if (s.reuse) {
       const auto reuse_start = Clock::now();
       s.reuse->begin_pass();
       for_each_pixel(settings, cancel, [&](unsigned x, unsigned y) {
         const std::uint32_t pixel = y * settings.width + x;
         PathRandom path(key, pixel, f), random(gather_key, pixel, f);
-        s.reuse->gather(pixel, camera_ray(x, y, path), random, rays.local());
+        s.reuse->gather(pixel, pixel_ray(s.camera, x, y, path), random, rays.local());
       });
       for_each_pixel(settings, cancel, [&](unsigned x, unsigned y) {
         const std::uint32_t pixel = y * settings.width + x;
@@ -262,7 +258,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
     for_each_pixel(settings, cancel, [&](unsigned x, unsigned y) {
       const std::uint32_t pixel = y * settings.width + x;
       PathRandom random(key, pixel, f);
-      const Ray ray = camera_ray(x, y, random);
+      const Ray ray = pixel_ray(s.camera, x, y, random);
       std::optional<PathTracer::FirstSurface> first;
       if (s.reuse) first = s.reuse->first_surface(pixel);
       PathEstimate e = tracer.radiance(ray, random, rays.local(), first ? &*first : nullptr);

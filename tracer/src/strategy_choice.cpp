@@ -24,6 +24,7 @@
 #include <optional>
 
 #include "luminance.h"
+#include "pixel_ray.h"
 #include "scene_io/relmse.h"
 #include "tracer/path_random.h"
 #include "tracer/path_tracer.h"
@@ -103,9 +104,7 @@ PilotRun run_pilot(LightStrategy& strategy, const PathTracer& tracer, const Pinh
     tbb::parallel_for(std::size_t(0), grid.size(), [&](std::size_t i) {
       const unsigned x = grid.x(i), y = grid.y(i);
       PathRandom random(key, y * width + x, pass);
-      const auto jitter = random.floats();  // as the renderer's camera ray takes them
-      const PathEstimate e =
-          tracer.radiance(camera.ray(float(x) + jitter[0], float(y) + jitter[1]), random, rays.local());
+      const PathEstimate e = tracer.radiance(pixel_ray(camera, x, y, random), random, rays.local());
       queries.local() += e.light_queries;
       const double l = luminance(e.radiance), seen = luminance(e.seen_emission);
       const bool finite = std::isfinite(l) && std::isfinite(seen);  // else black, as the renderer counts it

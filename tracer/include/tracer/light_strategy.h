@@ -142,9 +142,10 @@ bool resamplable(const std::string& name);
 /// with seeds of the pilot's own.
 struct PilotMeasure {
   std::string strategy;
-  /// The noise of one pass: per pixel, the variance of a path's luminance over the square of
-  /// the pixel's mean (every strategy's pilot passes pooled) plus relMSE's guard
-  /// (scene_io/relmse.h), averaged over the pilot's pixels. One pass's expected relMSE.
+  /// The noise of one pass: per pixel, the variance of a path's luminance (the emission the
+  /// camera ray met left out, the same for every strategy) over the square of the median of
+  /// every strategy's pilot paths there plus relMSE's guard (scene_io/relmse.h), averaged over
+  /// the pilot's pixels. One pass's expected relMSE, less what no strategy changes.
   double relative_variance = 0.0;
   /// A pass's work over the whole image, in rays: rays traced, light samples weighed and the
   /// light sampler's tries, each at its unit cost (kPilotLightSampleCost, kPilotSamplerTryCost).
