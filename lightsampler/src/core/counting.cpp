@@ -115,6 +115,10 @@ Accumulator integrate_rows(const TexelSpaceTriangle& t, const DensityMap& map, s
     if (!strip_extent(t.x, t.y, ya, yb, sx0, sx1)) continue;
     const CellRange cols = cell_range(sx0, sx1, map.width, map.addressing);
     for (std::int64_t ix = cols.first; ix <= cols.last; ++ix) {
+      // A dark cell adds nothing to either (densities are not negative): most of a sparse map's
+      // cells need no overlap.
+      const float d = cell_density(map, ix, iy);
+      if (d == 0.0f) continue;
       double xa, xb;
       cell_bounds(ix, map.width, map.addressing, t.xmin, t.xmax, xa, xb);
       // Interior cells (most cells of a large triangle) overlap fully: no formula needed (Eq. 6
@@ -122,7 +126,6 @@ Accumulator integrate_rows(const TexelSpaceTriangle& t, const DensityMap& map, s
       const double overlap = t.contains(xa, ya, xb, yb) ? (xb - xa) * (yb - ya)
                                                         : boundary_overlap<kind>(t, xa, ya, xb, yb);
       if (!(overlap > 0)) continue;
-      const float d = cell_density(map, ix, iy);
       acc.sum += double(d) * overlap;
       acc.max = std::max(acc.max, d);
     }
