@@ -137,6 +137,8 @@ std::vector<MeasuredPart> split_by_cost(const std::vector<Part>& roots, const st
     return m.acceptance < refinement.min_acceptance && m.texels > refinement.min_texels &&
            wasted(m) > split_cost + measuring;
   };
+  // Most triangles of a large mesh are not worth a split: where none is, the parts are the roots.
+  if (std::none_of(measured.begin(), measured.end(), worth_exploring)) return unsplit(roots, measured);
   const std::uint64_t room = refinement.max_triangles > roots.size() ? refinement.max_triangles - roots.size() : 0;
   std::uint64_t budget = std::min<std::uint64_t>(
       room, std::uint64_t(std::max(0.0, double(refinement.parts_per_sample) * refinement.frame_samples)));
