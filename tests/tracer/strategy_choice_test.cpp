@@ -1,6 +1,7 @@
 // `auto`'s choice by a pilot (tracer/src/strategy_choice.cpp): each of power, trs and ris renders
-// a few passes over a grid of the image's pixels, and the one of least relative variance times
-// counted work per pass renders the image.
+// a few passes over a grid of the image's pixels, until the most efficient (least relative
+// variance times counted work per pass) is known well enough; the cheapest within kCheaperMargin
+// of it renders the image.
 //
 // The pilot is deterministic (its seed is its own, its work counted rather than timed), so these
 // tests are exact checks of its outcome on three floors, each lit so that one thing decides:
@@ -14,7 +15,8 @@
 //     and ris draw each pass cost more than the paths, so power must be chosen, trs below half
 //     its efficiency.
 // A pilot that weighed noise alone would choose ris on the third floor; one that weighed cost
-// alone, power on the first two.
+// alone, power on the first two. Where one strategy is far ahead (the second floor) the pilot
+// stops at its first check; where two are close (the first), it renders more rounds.
 
 #include <gtest/gtest.h>
 
@@ -94,17 +96,51 @@ std::string efficiencies(const StrategyChoice& choice) {
   return text;
 }
 
+// Which strategy the pilot's measures make render: the most efficient, unless a cheaper one is
+// within kCheaperMargin of it. Costs as power's, trs' and ris' usually compare.
+TEST(StrategyChoice, TheCheapestCloseToTheMostEfficientRenders) {
+  const auto pilot = [](double power, double trs, double ris) {
+    std::vector<PilotMeasure> p = {{"power"}, {"trs"}, {"ris"}};
+    const double efficiency[] = {power, trs, ris}, cost[] = {1.0, 1.1, 1.4};
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      p[i].efficiency = efficiency[i];
+      p[i].cost = cost[i];
+    }
+    return p;
+  };
+  EXPECT_EQ(strategy_to_render(pilot(0.5, 0.7, 1.0)), 2u);  // none within the margin
+  EXPECT_EQ(strategy_to_render(pilot(0.9, 0.5, 1.0)), 0u);  // power within it
+  EXPECT_EQ(strategy_to_render(pilot(0.8, 0.9, 1.0)), 1u);  // trs within it, power not
+  EXPECT_EQ(strategy_to_render(pilot(0.9, 0.95, 1.0)), 0u);  // both: the cheaper
+  EXPECT_EQ(strategy_to_render(pilot(1.0, 1.2, 0.1)), 1u);  // the most efficient, cheapest within
+  EXPECT_EQ(strategy_to_render(pilot(1.0, 1.0, 1.0)), 0u);  // a tie: the cheapest
+}
+
+/// The choice follows the rule above from the pilot's own measures, in rounds within the bounds.
+void expect_consistent(const StrategyChoice& choice) {
+  ASSERT_EQ(choice.pilot.size(), std::size(kPilotStrategies));
+  EXPECT_EQ(choice.options.kind, choice.pilot[strategy_to_render(choice.pilot)].strategy) << efficiencies(choice);
+  EXPECT_GE(choice.pilot_passes, kMinPilotPasses);
+  EXPECT_LE(choice.pilot_passes, kMaxPilotPasses);
+  EXPECT_EQ(choice.pilot_passes % kPilotRoundPasses, 0u);
+}
+
 TEST(StrategyChoice, TheTextureDecides) {
   const StrategyChoice choice = render(sparse_panel(), settings()).strategy_choice;
-  ASSERT_EQ(choice.pilot.size(), std::size(kPilotStrategies));
+  expect_consistent(choice);
   EXPECT_NE(choice.options.kind, "power") << efficiencies(choice);
+  // trs and ris draw by the texels alike, within 10% of each other: the pilot needs more than
+  // its first rounds to know that neither is far ahead.
+  EXPECT_GT(choice.pilot_passes, kMinPilotPasses) << efficiencies(choice);
   EXPECT_LT(measure_of(choice, "power").efficiency, 0.5 * measure_of(choice, choice.options.kind).efficiency)
       << efficiencies(choice);
 }
 
 TEST(StrategyChoice, OrientationDecides) {
   const StrategyChoice choice = render(facing_away(), settings()).strategy_choice;
+  expect_consistent(choice);
   EXPECT_EQ(choice.options.kind, "ris") << efficiencies(choice);
+  EXPECT_EQ(choice.pilot_passes, kMinPilotPasses) << efficiencies(choice);  // far ahead: known at once
   EXPECT_GT(measure_of(choice, "ris").efficiency, 1.5 * measure_of(choice, "power").efficiency)
       << efficiencies(choice);
 }
@@ -113,6 +149,7 @@ TEST(StrategyChoice, CostDecides) {
   RenderSettings s = settings();
   s.strategy.lights = 1e5;
   const StrategyChoice choice = render(small_far_light(), s).strategy_choice;
+  expect_consistent(choice);
   EXPECT_EQ(choice.options.kind, "power") << efficiencies(choice);
   EXPECT_LT(measure_of(choice, "trs").efficiency, 0.5 * measure_of(choice, "power").efficiency)
       << efficiencies(choice);
@@ -131,6 +168,7 @@ TEST(StrategyChoice, TheSameForEverySeedAndThreadCount) {
       EXPECT_EQ(b.pilot[i].relative_variance, a.pilot[i].relative_variance) << a.pilot[i].strategy;
       EXPECT_EQ(b.pilot[i].cost, a.pilot[i].cost) << a.pilot[i].strategy;
     }
+    EXPECT_EQ(b.pilot_passes, a.pilot_passes);
     EXPECT_EQ(b.reason, a.reason);
   }
 }

@@ -109,6 +109,7 @@ nlohmann::json strategy_choice_json(const tracer::StrategyOptions& asked, const 
   for (const tracer::PilotMeasure& m : choice.pilot)
     pilot.push_back({{"strategy", m.strategy},
                      {"relative_variance", m.relative_variance},
+                     {"relative_error", m.relative_error},
                      {"cost", m.cost},
                      {"efficiency", m.efficiency},
                      {"rays_per_path", m.rays_per_path},
@@ -118,6 +119,8 @@ nlohmann::json strategy_choice_json(const tracer::StrategyOptions& asked, const 
           {"used", choice.options.kind},
           {"texel_gain", choice.texel_gain},
           {"pilot", pilot},
+          {"pilot_passes", choice.pilot_passes},
+          {"most_efficient", choice.most_efficient},
           {"reason", choice.reason}};
 }
 

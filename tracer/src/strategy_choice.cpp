@@ -4,8 +4,8 @@
 // pilot"): drawing by the texels (trs) pays where the emission varies within the lights,
 // weighing candidates by their contribution (ris) where lights face many ways, and the cheapest
 // draw (power) where neither gains enough for its cost. A pilot renders a few passes of each
-// over a grid of the image's pixels and keeps the one whose noise times work per pass is the
-// least.
+// over a grid of the image's pixels, and the cheapest of those whose noise times work per pass
+// is within kCheaperMargin of the least renders.
 //
 // The work is counted, not timed, so that the choice is the same on every run: rays traced,
 // light samples weighed (each a draw and a BSDF evaluation) and the light sampler's tries, at
@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numeric>
 #include <optional>
 
 #include "luminance.h"
@@ -38,8 +39,7 @@ namespace {
 constexpr double kGainSamples = 65536;
 constexpr std::uint64_t kGainSeed = 0x7e4e1a9a1ull;
 
-/// The pilot: this many passes of each strategy, over a grid of about kPilotPixels pixels.
-constexpr unsigned kPilotPasses = 8;
+/// The pilot's grid: about this many of the image's pixels (light_strategy.h gives its passes).
 constexpr double kPilotPixels = 4096;
 constexpr std::uint64_t kPilotSeed = 0x70696c6f74ull;
 
@@ -84,9 +84,12 @@ struct PilotGrid {
   unsigned y(std::size_t i) const { return y0 + unsigned(i / columns) * stride; }
 };
 
-/// One strategy's pilot passes, pixel by pixel (kPilotPasses a pixel, one pixel after another):
-/// each path's luminance, and the part of it the light strategy makes, and the work counted.
+/// One strategy's pilot: its paths' luminances, pixel by pixel (kMaxPilotPasses a pixel, in pass
+/// order), the part of each the light strategy makes, and the work counted.
 struct PilotRun {
+  std::unique_ptr<LightStrategy> strategy;
+  double lights = 0.0;  ///< the point lights of its passes, in proportion to the grid's pixels
+  std::optional<PathTracer> tracer;
   std::vector<double> luminance;
   /// Without the emission the camera rays met, whose noise is the same for every strategy: it
   /// would hide what they differ by where emitters fill the image.
@@ -94,39 +97,40 @@ struct PilotRun {
   std::uint64_t rays = 0, light_queries = 0, sampler_tries = 0;
 };
 
-PilotRun run_pilot(LightStrategy& strategy, const PathTracer& tracer, const PinholeCamera& camera,
-                   const PilotGrid& grid, unsigned width) {
-  PilotRun run{std::vector<double>(grid.size() * kPilotPasses), std::vector<double>(grid.size() * kPilotPasses)};
+/// Renders passes [first, last) of `run`'s strategy over the grid.
+void run_passes(PilotRun& run, const PinholeCamera& camera, const PilotGrid& grid, unsigned width, unsigned first,
+                unsigned last) {
   const lightsampler::PhiloxKey key = path_key(kPilotSeed);
   tbb::combinable<std::uint64_t> rays, queries;
-  for (unsigned pass = 0; pass < kPilotPasses; ++pass) {
-    strategy.begin_pass(pass_seed(kPilotSeed, pass));
+  for (unsigned pass = first; pass < last; ++pass) {
+    run.strategy->begin_pass(pass_seed(kPilotSeed, pass));
     tbb::parallel_for(std::size_t(0), grid.size(), [&](std::size_t i) {
       const unsigned x = grid.x(i), y = grid.y(i);
       PathRandom random(key, y * width + x, pass);
-      const PathEstimate e = tracer.radiance(pixel_ray(camera, x, y, random), random, rays.local());
+      const PathEstimate e = run.tracer->radiance(pixel_ray(camera, x, y, random), random, rays.local());
       queries.local() += e.light_queries;
       const double l = luminance(e.radiance), seen = luminance(e.seen_emission);
       const bool finite = std::isfinite(l) && std::isfinite(seen);  // else black, as the renderer counts it
-      run.luminance[i * kPilotPasses + pass] = finite ? l : 0.0;
-      run.lit[i * kPilotPasses + pass] = finite ? l - seen : 0.0;
+      run.luminance[i * kMaxPilotPasses + pass] = finite ? l : 0.0;
+      run.lit[i * kMaxPilotPasses + pass] = finite ? l - seen : 0.0;
     });
-    run.sampler_tries += strategy.last_pass().candidates;
+    run.sampler_tries += run.strategy->last_pass().candidates;
   }
-  run.rays = rays.combine(std::plus<>());
-  run.light_queries = queries.combine(std::plus<>());
-  return run;
+  run.rays += rays.combine(std::plus<>());
+  run.light_queries += queries.combine(std::plus<>());
 }
 
 /// Per pilot pixel, the weight of its variance in a pass's relMSE: 1 / (r^2 + guard), r the
 /// median of every strategy's pilot paths there. The median, not the mean: a rare bright path
 /// (a firefly) raises the mean of its own pixel and would hide the very variance it makes.
-std::vector<double> noise_weights(const std::vector<PilotRun>& runs, std::size_t pixels) {
+std::vector<double> noise_weights(const std::vector<PilotRun>& runs, std::size_t pixels, unsigned passes) {
   std::vector<double> weights(pixels), values;
   for (std::size_t i = 0; i < pixels; ++i) {
     values.clear();
-    for (const PilotRun& r : runs)
-      values.insert(values.end(), r.luminance.begin() + i * kPilotPasses, r.luminance.begin() + (i + 1) * kPilotPasses);
+    for (const PilotRun& r : runs) {
+      const auto first = r.luminance.begin() + std::ptrdiff_t(i * kMaxPilotPasses);
+      values.insert(values.end(), first, first + passes);
+    }
     std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
     const double median = values[values.size() / 2];
     weights[i] = 1.0 / (median * median + trs::kRelmseGuard);
@@ -134,60 +138,139 @@ std::vector<double> noise_weights(const std::vector<PilotRun>& runs, std::size_t
   return weights;
 }
 
-/// Fills `m`'s noise from its run: the weighted mean of its pixels' variances.
-void measure_noise(const PilotRun& run, const std::vector<double>& weights, PilotMeasure& m) {
-  constexpr double n = kPilotPasses;
-  double sum = 0.0;
+/// Each pilot pixel's weighted variance over the first `passes` passes of `run`.
+std::vector<double> pixel_noise(const PilotRun& run, const std::vector<double>& weights, unsigned passes) {
+  std::vector<double> noise(weights.size());
   for (std::size_t i = 0; i < weights.size(); ++i) {
     double s = 0.0, squares = 0.0;
-    for (unsigned k = 0; k < kPilotPasses; ++k) {
-      const double l = run.lit[i * kPilotPasses + k];
+    for (unsigned k = 0; k < passes; ++k) {
+      const double l = run.lit[i * kMaxPilotPasses + k];
       s += l;
       squares += l * l;
     }
-    sum += weights[i] * std::max(0.0, (squares - s * s / n) / (n - 1.0));
+    noise[i] = weights[i] * std::max(0.0, (squares - s * s / passes) / (passes - 1.0));
   }
-  m.relative_variance = sum / double(weights.size());
+  return noise;
+}
+
+/// The standard error, over the pilot's pixels, of the log of the ratio of the means of `a` and
+/// `b` (the delta method). The pixels are paired: the strategies' paths there share their seeds
+/// and what makes a pixel hard, so their noises move together, and the ratio is far better known
+/// than either.
+double log_ratio_error(const std::vector<double>& a, const std::vector<double>& b) {
+  const double n = double(a.size());
+  const double mean_a = std::accumulate(a.begin(), a.end(), 0.0) / n;
+  const double mean_b = std::accumulate(b.begin(), b.end(), 0.0) / n;
+  if (!(mean_a > 0.0) || !(mean_b > 0.0) || a.size() < 2) return 0.0;
+  double sum = 0.0, squares = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double d = a[i] / mean_a - b[i] / mean_b;
+    sum += d;
+    squares += d * d;
+  }
+  return std::sqrt(std::max(0.0, squares - sum * sum / n) / (n - 1.0) / n);
 }
 
 /// Fills `m`'s cost from its run: the work of a pass over `pixels`, the light sampler's tries
 /// scaled from the pilot's lights to the render's.
-void measure_cost(const PilotRun& run, unsigned candidates, std::size_t paths, double lights_scale,
+void measure_cost(const PilotRun& run, unsigned passes, std::size_t grid_pixels, double lights_scale,
                   std::size_t pixels, PilotMeasure& m) {
-  m.rays_per_path = double(run.rays) / double(paths);
-  m.light_samples_per_path = double(run.light_queries) * candidates / double(paths);
-  m.sampler_tries_per_pass = double(run.sampler_tries) * lights_scale / kPilotPasses;
+  const double paths = double(grid_pixels) * passes;
+  m.rays_per_path = double(run.rays) / paths;
+  m.light_samples_per_path = double(run.light_queries) * run.strategy->candidates() / paths;
+  m.sampler_tries_per_pass = double(run.sampler_tries) * lights_scale / passes;
   m.cost = double(pixels) * (m.rays_per_path + kPilotLightSampleCost * m.light_samples_per_path) +
            kPilotSamplerTryCost * m.sampler_tries_per_pass;
 }
 
-std::string pilot_reason(const std::vector<PilotMeasure>& pilot, const PilotMeasure& best, const PilotGrid& grid) {
-  char text[512];
+/// Fills each strategy's measure from the first `passes` passes of its run, its cost for a pass
+/// of `render_lights` point lights over `pixels`; returns each one's noise, pixel by pixel.
+std::vector<std::vector<double>> measure_pilot(const std::vector<PilotRun>& runs, unsigned passes,
+                                               double render_lights, std::size_t pixels,
+                                               std::vector<PilotMeasure>& pilot) {
+  // A floor on the noise keeps the efficiency finite where a strategy's pilot saw none (a black
+  // image): the cheapest then wins.
+  constexpr double kNoiseFloor = 1e-30;
+  const std::size_t grid_pixels = runs.front().lit.size() / kMaxPilotPasses;
+  const std::vector<double> weights = noise_weights(runs, grid_pixels, passes);
+  std::vector<std::vector<double>> noise;
+  for (std::size_t s = 0; s < runs.size(); ++s) {
+    PilotMeasure& m = pilot[s];
+    measure_cost(runs[s], passes, grid_pixels, render_lights / runs[s].lights, pixels, m);
+    noise.push_back(pixel_noise(runs[s], weights, passes));
+    m.relative_variance = std::accumulate(noise[s].begin(), noise[s].end(), 0.0) / double(grid_pixels);
+    m.efficiency = 1.0 / (std::max(m.relative_variance, kNoiseFloor) * m.cost);
+  }
+  return noise;
+}
+
+/// The most efficient strategy; the first, in kPilotStrategies' order (the cheapest first), on a tie.
+std::size_t leader(const std::vector<PilotMeasure>& pilot) {
+  std::size_t best = 0;
+  for (std::size_t s = 1; s < pilot.size(); ++s)
+    if (pilot[s].efficiency > pilot[best].efficiency) best = s;
+  return best;
+}
+
+/// The strategy that renders: the cheapest of those within kCheaperMargin of the most efficient,
+/// `best` (itself where none is cheaper).
+std::size_t cheapest_close_to(const std::vector<PilotMeasure>& pilot, std::size_t best) {
+  std::size_t chosen = best;
+  for (std::size_t s = 0; s < pilot.size(); ++s)
+    if (pilot[s].efficiency >= (1.0 - kCheaperMargin) * pilot[best].efficiency && pilot[s].cost < pilot[chosen].cost)
+      chosen = s;
+  return chosen;
+}
+
+/// Whether no other strategy can be more than kPilotIndifference more efficient than the leader,
+/// by kPilotStandardErrors standard errors of the ratio of their noises (their costs are counted,
+/// not sampled).
+bool decided(const std::vector<PilotMeasure>& pilot, const std::vector<std::vector<double>>& noise, std::size_t best) {
+  for (std::size_t s = 0; s < pilot.size(); ++s) {
+    if (s == best) continue;
+    const double error = log_ratio_error(noise[s], noise[best]);
+    if (std::log(pilot[s].efficiency / pilot[best].efficiency) + kPilotStandardErrors * error > std::log1p(kPilotIndifference))
+      return false;
+  }
+  return true;
+}
+
+std::string pilot_reason(const std::vector<PilotMeasure>& pilot, std::size_t best, std::size_t chosen,
+                         const PilotGrid& grid, unsigned passes) {
+  char text[640];
+  const PilotMeasure& b = pilot[best];
   int n = std::snprintf(text, sizeof text,
-                        "a pilot of %u passes on %zu pixels: %s renders most efficiently (relative variance %.3g a pass, "
+                        "a pilot of %u passes on %zu pixels: %s is the most efficient (relative variance %.3g a pass, "
                         "cost %.3g rays a pass)",
-                        kPilotPasses, grid.size(), best.strategy.c_str(), best.relative_variance, best.cost);
+                        passes, grid.size(), b.strategy.c_str(), b.relative_variance, b.cost);
   for (const PilotMeasure& m : pilot)
-    if (&m != &best && n > 0 && std::size_t(n) < sizeof text)
+    if (&m != &b && n > 0 && std::size_t(n) < sizeof text)
       n += std::snprintf(text + n, sizeof text - n, "; %s %.2fx as efficient", m.strategy.c_str(),
-                         m.efficiency / best.efficiency);
+                         m.efficiency / b.efficiency);
+  if (n > 0 && std::size_t(n) < sizeof text)
+    std::snprintf(text + n, sizeof text - n, "; %s renders, as the cheapest within %.0f%% of it", pilot[chosen].strategy.c_str(),
+                  100.0 * kCheaperMargin);
   return text;
 }
 
 }  // namespace
 
+std::size_t strategy_to_render(const std::vector<PilotMeasure>& pilot) {
+  return pilot.empty() ? 0 : cheapest_close_to(pilot, leader(pilot));
+}
+
 ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emitters& emitters,
                                const PinholeCamera& camera, const RenderSettings& settings) {
   const StrategyOptions& options = settings.strategy;
+  ChosenStrategy chosen;
+  StrategyChoice& choice = chosen.choice;
+  choice.options = options;
   if (options.kind != kAutoStrategy) {
-    // Made before the aggregate: GCC 12 destroys a braced return value's members twice when one
-    // of them throws as it is built.
-    std::unique_ptr<LightStrategy> strategy = make_light_strategy(emitters, options);
-    return {{options, 0.0, {}, {}}, std::move(strategy)};
+    chosen.strategy = make_light_strategy(emitters, options);
+    return chosen;
   }
   const auto start = std::chrono::steady_clock::now();
-  ChosenStrategy chosen{{options, 1.0, {}, {}}, nullptr};
-  StrategyChoice& choice = chosen.choice;
+  choice.texel_gain = 1.0;
   if (emitters.count() == 0 || !(emitters.total_density() > 0.0)) {  // nothing to draw by texels or to weigh
     choice.options.kind = "power";
     choice.reason = emitters.count() == 0 ? "the scene's lights are punctual alone: power"
@@ -204,33 +287,34 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
   // A pass's point lights in proportion to the pilot's pixels: a connection picks one light of
   // the set, so the noise per path is the same (renderer.h, kAutoLightsPerQuery).
   const double lights_share = double(grid.size()) / double(pixels);
-  std::vector<PilotRun> runs;
-  for (const char* kind : kPilotStrategies) {
-    StrategyOptions o = options;
-    o.kind = kind;
-    o.lights = std::max(1.0, std::round(options.lights * lights_share));
-    const std::unique_ptr<LightStrategy> strategy = make_light_strategy(emitters, o);
-    const PathTracer tracer(scene, geometry, emitters, *strategy, settings.max_depth);
-    runs.push_back(run_pilot(*strategy, tracer, camera, grid, settings.width));
-    choice.pilot.push_back({kind});
-    measure_cost(runs.back(), strategy->candidates(), grid.size() * kPilotPasses, options.lights / o.lights, pixels,
-                 choice.pilot.back());
-  }
-  const std::vector<double> weights = noise_weights(runs, grid.size());
-  // A floor on the noise keeps the efficiency finite where a strategy's pilot saw none (a black
-  // image): the cheapest then wins.
-  constexpr double kNoiseFloor = 1e-30;
+  std::vector<PilotRun> runs(std::size(kPilotStrategies));
   for (std::size_t s = 0; s < runs.size(); ++s) {
-    PilotMeasure& m = choice.pilot[s];
-    measure_noise(runs[s], weights, m);
-    m.efficiency = 1.0 / (std::max(m.relative_variance, kNoiseFloor) * m.cost);
+    StrategyOptions o = options;
+    o.kind = kPilotStrategies[s];
+    o.lights = std::max(1.0, std::round(options.lights * lights_share));
+    runs[s].lights = o.lights;
+    runs[s].strategy = make_light_strategy(emitters, o);
+    runs[s].tracer.emplace(scene, geometry, emitters, *runs[s].strategy, settings.max_depth);
+    runs[s].luminance.resize(grid.size() * kMaxPilotPasses);
+    runs[s].lit.resize(grid.size() * kMaxPilotPasses);
+    choice.pilot.push_back({o.kind});
   }
-  // The first of the most efficient, in kPilotStrategies' order (the cheapest first) on a tie.
   std::size_t best = 0;
-  for (std::size_t s = 1; s < runs.size(); ++s)
-    if (choice.pilot[s].efficiency > choice.pilot[best].efficiency) best = s;
-  choice.options.kind = choice.pilot[best].strategy;
-  choice.reason = pilot_reason(choice.pilot, choice.pilot[best], grid);
+  unsigned passes = 0;
+  while (passes < kMaxPilotPasses) {
+    for (PilotRun& run : runs) run_passes(run, camera, grid, settings.width, passes, passes + kPilotRoundPasses);
+    passes += kPilotRoundPasses;
+    if (passes < kMinPilotPasses) continue;
+    const std::vector<std::vector<double>> noise = measure_pilot(runs, passes, options.lights, pixels, choice.pilot);
+    best = leader(choice.pilot);
+    for (std::size_t s = 0; s < runs.size(); ++s) choice.pilot[s].relative_error = log_ratio_error(noise[s], noise[best]);
+    if (decided(choice.pilot, noise, best)) break;
+  }
+  const std::size_t rendering = cheapest_close_to(choice.pilot, best);
+  choice.pilot_passes = passes;
+  choice.most_efficient = choice.pilot[best].strategy;
+  choice.options.kind = choice.pilot[rendering].strategy;
+  choice.reason = pilot_reason(choice.pilot, best, rendering, grid, passes);
   chosen.strategy = make_light_strategy(emitters, choice.options);  // with the render's lights
   chosen.pilot_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return chosen;

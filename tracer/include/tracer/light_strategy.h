@@ -147,6 +147,9 @@ struct PilotMeasure {
   /// every strategy's pilot paths there plus relMSE's guard (scene_io/relmse.h), averaged over
   /// the pilot's pixels. One pass's expected relMSE, less what no strategy changes.
   double relative_variance = 0.0;
+  /// The standard error, over the pilot's pixels, of the log of this strategy's relative_variance
+  /// over the most efficient one's (0 for that one): how well the pilot knew their ratio.
+  double relative_error = 0.0;
   /// A pass's work over the whole image, in rays: rays traced, light samples weighed and the
   /// light sampler's tries, each at its unit cost (kPilotLightSampleCost, kPilotSamplerTryCost).
   double cost = 0.0;
@@ -160,6 +163,26 @@ struct PilotMeasure {
 /// on every scene measured (docs/noise.md, "The default chooses by a pilot").
 inline constexpr const char* kPilotStrategies[] = {"power", "trs", "ris"};
 
+/// The pilot's passes of each strategy: rounds of kPilotRoundPasses, at least kMinPilotPasses and
+/// at most kMaxPilotPasses. It stops once no other strategy can be more than kPilotIndifference
+/// more efficient than the most efficient, by kPilotStandardErrors standard errors of the ratio
+/// of their noises: where the strategies are far apart, or known to be close enough that either
+/// loses little, more passes would not change what renders.
+inline constexpr unsigned kPilotRoundPasses = 2, kMinPilotPasses = 4, kMaxPilotPasses = 8;
+inline constexpr double kPilotIndifference = 0.1, kPilotStandardErrors = 2.0;
+
+/// The cheapest strategy within this of the most efficient renders. The pilot's noise is what it
+/// saw, and what it misses most is the rare bright paths that no light strategy draws (light
+/// reached through glass or off a mirror, fireflies): the same for every strategy, lowered only
+/// by more passes, so where the pilot finds strategies close the cheaper one is the better bet.
+/// Chosen on the 16 scenes of docs/noise.md ("The default chooses by a pilot").
+inline constexpr double kCheaperMargin = 0.15;
+
+/// Which of the pilot's measures renders: the cheapest of those whose efficiency is within
+/// kCheaperMargin of the most efficient (the first most efficient, in kPilotStrategies' order,
+/// on a tie).
+std::size_t strategy_to_render(const std::vector<PilotMeasure>& pilot);
+
 /// The strategy that renders, and for `auto` why it was chosen.
 struct StrategyChoice {
   StrategyOptions options;  ///< as given; for `auto`, with the kind it chose
@@ -170,6 +193,10 @@ struct StrategyChoice {
   double texel_gain = 0.0;
   std::vector<PilotMeasure> pilot;  ///< auto: each strategy the pilot weighed; empty otherwise
   std::string reason;  ///< auto: the choice in a sentence; empty for the others
+  unsigned pilot_passes = 0;  ///< auto: the passes of each strategy the pilot rendered before it chose
+  /// auto: the pilot's most efficient strategy; the cheapest within a margin of it renders
+  /// (options.kind).
+  std::string most_efficient;
 };
 
 /// The strategy `options` names, made by its registered definition. Throws std::invalid_argument
