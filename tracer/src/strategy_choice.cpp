@@ -155,8 +155,8 @@ std::vector<double> pixel_noise(const PilotRun& run, const std::vector<double>& 
 
 /// The standard error, over the pilot's pixels, of the log of the ratio of the means of `a` and
 /// `b` (the delta method). The pixels are paired: the strategies' paths there share their seeds
-/// and what makes a pixel hard, so their noises move together, and the ratio is far better known
-/// than either.
+/// and what makes a pixel hard, so their noises mostly move together, and the ratio is usually
+/// better known than either.
 double log_ratio_error(const std::vector<double>& a, const std::vector<double>& b) {
   const double n = double(a.size());
   const double mean_a = std::accumulate(a.begin(), a.end(), 0.0) / n;
