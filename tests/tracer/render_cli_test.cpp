@@ -385,9 +385,9 @@ TEST_F(RenderCliTest, HandWrittenEmissiveQuadRenders) {
 }
 
 // The set-up by part in the stats and the summary, and what `auto` chose and why: its pilot's
-// measure of each strategy, the cheapest within 15% of the most efficient used. On the neon sign, whose strokes vary within
-// its two triangles, drawing by the texels gains far more than it costs (not power); on a quad of
-// flat emission the texel gain is exactly 1.
+// measure of each strategy, the cheapest within 15% of the most efficient used. On the neon
+// sign, whose strokes vary within its two triangles, drawing by the texels gains far more than
+// it costs (not power); on a quad of flat emission the texel gain is exactly 1.
 TEST_F(RenderCliTest, SetUpByPartAndTheStrategyAutoChose) {
   const fs::path flat = write_quad_scene("flat.gltf", R"({"name": "flat", "emissiveFactor": [1, 1, 1]})");
   for (const fs::path& scene : {kScene, flat}) {
