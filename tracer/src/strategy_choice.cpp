@@ -259,6 +259,10 @@ std::size_t strategy_to_render(const std::vector<PilotMeasure>& pilot) {
   return pilot.empty() ? 0 : cheapest_close_to(pilot, leader(pilot));
 }
 
+bool pilot_decided(const std::vector<PilotMeasure>& pilot, const std::vector<std::vector<double>>& noise) {
+  return pilot.empty() || decided(pilot, noise, leader(pilot));
+}
+
 ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emitters& emitters,
                                const PinholeCamera& camera, const RenderSettings& settings) {
   const StrategyOptions& options = settings.strategy;
@@ -308,7 +312,7 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
     const std::vector<std::vector<double>> noise = measure_pilot(runs, passes, options.lights, pixels, choice.pilot);
     best = leader(choice.pilot);
     for (std::size_t s = 0; s < runs.size(); ++s) choice.pilot[s].relative_error = log_ratio_error(noise[s], noise[best]);
-    if (decided(choice.pilot, noise, best)) break;
+    if (pilot_decided(choice.pilot, noise)) break;
   }
   const std::size_t rendering = cheapest_close_to(choice.pilot, best);
   choice.pilot_passes = passes;

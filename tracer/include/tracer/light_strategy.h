@@ -183,6 +183,12 @@ inline constexpr double kCheaperMargin = 0.15;
 /// on a tie).
 std::size_t strategy_to_render(const std::vector<PilotMeasure>& pilot);
 
+/// Whether the pilot may stop: no other strategy can be more than kPilotIndifference more
+/// efficient than the most efficient, by kPilotStandardErrors standard errors of the ratio of
+/// their noises. `noise` holds each strategy's noise pixel by pixel, the same pixels for all
+/// (paired: the pixel-to-pixel spread the strategies share cancels in the ratio).
+bool pilot_decided(const std::vector<PilotMeasure>& pilot, const std::vector<std::vector<double>>& noise);
+
 /// The strategy that renders, and for `auto` why it was chosen.
 struct StrategyChoice {
   StrategyOptions options;  ///< as given; for `auto`, with the kind it chose
