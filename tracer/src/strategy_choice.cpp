@@ -222,15 +222,18 @@ std::size_t cheapest_close_to(const std::vector<PilotMeasure>& pilot, std::size_
   return chosen;
 }
 
+/// Fills each strategy's relative_error: that of the ratio of its noise to the leader's, `best`.
+void measure_errors(std::vector<PilotMeasure>& pilot, const std::vector<std::vector<double>>& noise, std::size_t best) {
+  for (std::size_t s = 0; s < pilot.size(); ++s) pilot[s].relative_error = log_ratio_error(noise[s], noise[best]);
+}
+
 /// Whether no other strategy can be more than kPilotIndifference more efficient than the leader,
-/// by kPilotStandardErrors standard errors of the ratio of their noises (their costs are counted,
-/// not sampled).
-bool decided(const std::vector<PilotMeasure>& pilot, const std::vector<std::vector<double>>& noise, std::size_t best) {
+/// by kPilotStandardErrors of its relative_error (the costs are counted, not sampled).
+bool decided(const std::vector<PilotMeasure>& pilot, std::size_t best) {
   for (std::size_t s = 0; s < pilot.size(); ++s) {
     if (s == best) continue;
-    const double error = log_ratio_error(noise[s], noise[best]);
-    if (std::log(pilot[s].efficiency / pilot[best].efficiency) + kPilotStandardErrors * error > std::log1p(kPilotIndifference))
-      return false;
+    const double margin = kPilotStandardErrors * pilot[s].relative_error;
+    if (std::log(pilot[s].efficiency / pilot[best].efficiency) + margin > std::log1p(kPilotIndifference)) return false;
   }
   return true;
 }
@@ -259,8 +262,11 @@ std::size_t strategy_to_render(const std::vector<PilotMeasure>& pilot) {
   return pilot.empty() ? 0 : cheapest_close_to(pilot, leader(pilot));
 }
 
-bool pilot_decided(const std::vector<PilotMeasure>& pilot, const std::vector<std::vector<double>>& noise) {
-  return pilot.empty() || decided(pilot, noise, leader(pilot));
+bool pilot_decided(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise) {
+  if (pilot.empty()) return true;
+  const std::size_t best = leader(pilot);
+  measure_errors(pilot, noise, best);
+  return decided(pilot, best);
 }
 
 ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emitters& emitters,
@@ -311,8 +317,8 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
     if (passes < kMinPilotPasses) continue;
     const std::vector<std::vector<double>> noise = measure_pilot(runs, passes, options.lights, pixels, choice.pilot);
     best = leader(choice.pilot);
-    for (std::size_t s = 0; s < runs.size(); ++s) choice.pilot[s].relative_error = log_ratio_error(noise[s], noise[best]);
-    if (pilot_decided(choice.pilot, noise)) break;
+    measure_errors(choice.pilot, noise, best);
+    if (decided(choice.pilot, best)) break;
   }
   const std::size_t rendering = cheapest_close_to(choice.pilot, best);
   choice.pilot_passes = passes;

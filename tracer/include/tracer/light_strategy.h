@@ -187,7 +187,7 @@ std::size_t strategy_to_render(const std::vector<PilotMeasure>& pilot);
 /// efficient than the most efficient, by kPilotStandardErrors standard errors of the ratio of
 /// their noises. `noise` holds each strategy's noise pixel by pixel, the same pixels for all
 /// (paired: the pixel-to-pixel spread the strategies share cancels in the ratio).
-bool pilot_decided(const std::vector<PilotMeasure>& pilot, const std::vector<std::vector<double>>& noise);
+bool pilot_decided(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise);
 
 /// The strategy that renders, and for `auto` why it was chosen.
 struct StrategyChoice {
