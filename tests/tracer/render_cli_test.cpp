@@ -415,6 +415,7 @@ TEST_F(RenderCliTest, SetUpByPartAndTheStrategyAutoChose) {
     }
     EXPECT_EQ(choice["most_efficient"], best);
     EXPECT_GE(choice["pilot_passes"].get<unsigned>(), 4u);
+    EXPECT_GT(choice["pilot_pixels"].get<unsigned>(), 0u);
     // The cheapest within kCheaperMargin (tracer/light_strategy.h: 15%) of the most efficient.
     std::string cheapest;
     double cost = 0.0;

@@ -194,6 +194,33 @@ TEST(StrategyChoice, TheSameForEverySeedAndThreadCount) {
   }
 }
 
+// The pilot spends at most kPilotShare of the render's paths beyond its least (kMinPilotPasses
+// on a grid of about a thousand pixels): a render of 2 passes of 160 x 120 pixels gets a smaller
+// grid than one of 64, and every pilot stays within its share once over that least. A pilot
+// blind to the render's length would spend the same on both.
+TEST(StrategyChoice, ThePilotSpendsItsShareOfTheRender) {
+  const Scene scene = sparse_panel();
+  const auto choice_at = [&](unsigned spp) {
+    RenderSettings s = settings();
+    s.width = 160;
+    s.height = 120;
+    s.spp = spp;
+    s.strategy.lights = auto_lights(s.width, s.height, s.max_depth);
+    const std::atomic<bool> cancel{true};  // the choice alone: no pass
+    return Renderer(scene, s).render({}, cancel).strategy_choice;
+  };
+  const auto pilot_paths = [](const StrategyChoice& c) {
+    return double(c.pilot_passes) * double(c.pilot.size()) * double(c.pilot_pixels);
+  };
+  const StrategyChoice short_render = choice_at(2), long_render = choice_at(64);
+  expect_consistent(short_render);
+  expect_consistent(long_render);
+  EXPECT_EQ(short_render.pilot_passes, kMinPilotPasses);
+  EXPECT_LT(short_render.pilot_pixels, long_render.pilot_pixels);
+  EXPECT_LE(short_render.pilot_pixels, 1024u);
+  EXPECT_LE(pilot_paths(long_render), kPilotShare * 64 * 160 * 120);
+}
+
 // The pilot's paths stay out of the image: `auto` renders as the strategy it chose, bit for bit.
 TEST(StrategyChoice, RendersAsTheStrategyItChose) {
   for (const Scene& scene : {sparse_panel(), facing_away(), small_far_light()}) {

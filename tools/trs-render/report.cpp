@@ -120,6 +120,7 @@ nlohmann::json strategy_choice_json(const tracer::StrategyOptions& asked, const 
           {"texel_gain", choice.texel_gain},
           {"pilot", pilot},
           {"pilot_passes", choice.pilot_passes},
+          {"pilot_pixels", choice.pilot_pixels},
           {"most_efficient", choice.most_efficient},
           {"reason", choice.reason}};
 }

@@ -39,8 +39,10 @@ namespace {
 constexpr double kGainSamples = 65536;
 constexpr std::uint64_t kGainSeed = 0x7e4e1a9a1ull;
 
-/// The pilot's grid: about this many of the image's pixels (light_strategy.h gives its passes).
-constexpr double kPilotPixels = 4096;
+/// The pilot's grid: about this many of the image's pixels, fewer where kPilotShare of a short
+/// render does not pay for as many, but not fewer than kMinPilotPixels (light_strategy.h gives
+/// its passes).
+constexpr double kPilotPixels = 4096, kMinPilotPixels = 1024;
 constexpr std::uint64_t kPilotSeed = 0x70696c6f74ull;
 
 /// Unit costs of the pilot's work, in rays (each a closest-hit or shadow ray with the shading
@@ -73,8 +75,9 @@ double texel_gain(Emitters& emitters) {
 struct PilotGrid {
   unsigned stride, x0, y0, columns, rows;
 
-  PilotGrid(unsigned w, unsigned h)
-      : stride(unsigned(std::max(1.0, std::ceil(std::sqrt(double(w) * h / kPilotPixels))))),
+  /// About `pixels` of a w x h image.
+  PilotGrid(unsigned w, unsigned h, double pixels)
+      : stride(unsigned(std::max(1.0, std::ceil(std::sqrt(double(w) * h / pixels))))),
         x0(std::min(stride / 2, w - 1)),
         y0(std::min(stride / 2, h - 1)),
         columns((w - x0 + stride - 1) / stride),
@@ -239,13 +242,13 @@ bool decided(const std::vector<PilotMeasure>& pilot, std::size_t best) {
 }
 
 std::string pilot_reason(const std::vector<PilotMeasure>& pilot, std::size_t best, std::size_t chosen,
-                         const PilotGrid& grid, unsigned passes) {
+                         const PilotGrid& grid, unsigned passes, const char* stop) {
   char text[640];
   const PilotMeasure& b = pilot[best];
   int n = std::snprintf(text, sizeof text,
-                        "a pilot of %u passes on %zu pixels: %s is the most efficient (relative variance %.3g a pass, "
-                        "cost %.3g rays a pass)",
-                        passes, grid.size(), b.strategy.c_str(), b.relative_variance, b.cost);
+                        "a pilot of %u passes%s on %zu pixels: %s is the most efficient (relative variance %.3g a "
+                        "pass, cost %.3g rays a pass)",
+                        passes, stop, grid.size(), b.strategy.c_str(), b.relative_variance, b.cost);
   for (const PilotMeasure& m : pilot)
     if (&m != &b && n > 0 && std::size_t(n) < sizeof text)
       n += std::snprintf(text + n, sizeof text - n, "; %s %.2fx as efficient", m.strategy.c_str(),
@@ -292,12 +295,18 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
 
   std::optional<tbb::global_control> limit;
   if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
-  const PilotGrid grid(settings.width, settings.height);
   const std::size_t pixels = std::size_t(settings.width) * settings.height;
+  const std::size_t strategies = std::size(kPilotStrategies);
+  // The pilot's paths: at most kPilotShare of the render's, but kMinPilotPasses on at least
+  // kMinPilotPixels.
+  const double budget = kPilotShare * double(settings.spp) * double(pixels);
+  const PilotGrid grid(settings.width, settings.height,
+                       std::clamp(budget / double(strategies * kMinPilotPasses), kMinPilotPixels, kPilotPixels));
+  const auto within_budget = [&](unsigned passes) { return double(passes * strategies * grid.size()) <= budget; };
   // A pass's point lights in proportion to the pilot's pixels: a connection picks one light of
   // the set, so the noise per path is the same (renderer.h, kAutoLightsPerQuery).
   const double lights_share = double(grid.size()) / double(pixels);
-  std::vector<PilotRun> runs(std::size(kPilotStrategies));
+  std::vector<PilotRun> runs(strategies);
   for (std::size_t s = 0; s < runs.size(); ++s) {
     StrategyOptions o = options;
     o.kind = kPilotStrategies[s];
@@ -318,13 +327,18 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
     const std::vector<std::vector<double>> noise = measure_pilot(runs, passes, options.lights, pixels, choice.pilot);
     best = leader(choice.pilot);
     measure_errors(choice.pilot, noise, best);
-    if (decided(choice.pilot, best)) break;
+    if (decided(choice.pilot, best) || !within_budget(passes + kPilotRoundPasses)) break;
   }
   const std::size_t rendering = cheapest_close_to(choice.pilot, best);
   choice.pilot_passes = passes;
+  choice.pilot_pixels = grid.size();
   choice.most_efficient = choice.pilot[best].strategy;
   choice.options.kind = choice.pilot[rendering].strategy;
-  choice.reason = pilot_reason(choice.pilot, best, rendering, grid, passes);
+  // Why it stopped before it knew enough, if it did.
+  const char* stop = decided(choice.pilot, best)     ? ""
+                     : passes == kMaxPilotPasses ? " (its most)"
+                                                 : " (its share of the render)";
+  choice.reason = pilot_reason(choice.pilot, best, rendering, grid, passes, stop);
   chosen.strategy = make_light_strategy(emitters, choice.options);  // with the render's lights
   chosen.pilot_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return chosen;

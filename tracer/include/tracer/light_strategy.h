@@ -171,6 +171,13 @@ inline constexpr const char* kPilotStrategies[] = {"power", "trs", "ris"};
 inline constexpr unsigned kPilotRoundPasses = 2, kMinPilotPasses = 4, kMaxPilotPasses = 8;
 inline constexpr double kPilotIndifference = 0.1, kPilotStandardErrors = 2.0;
 
+/// The most of the render's paths (its passes over the whole image) the pilot spends choosing:
+/// its grid is smaller for a short render (down to kMinPilotPixels, strategy_choice.cpp), and it
+/// takes a round beyond kMinPilotPasses only within this share. What a better choice saves is a
+/// share of the render, so a preview of a few passes cannot repay a pilot that a final render
+/// can; a render to a deadline alone is not bounded by it.
+inline constexpr double kPilotShare = 0.1;
+
 /// The cheapest strategy within this of the most efficient renders. The pilot's noise is what it
 /// saw, and what it misses most is the rare bright paths that no light strategy draws (light
 /// reached through glass or off a mirror, fireflies): the same for every strategy, lowered only
@@ -200,6 +207,7 @@ struct StrategyChoice {
   std::vector<PilotMeasure> pilot;  ///< auto: each strategy the pilot weighed; empty otherwise
   std::string reason;  ///< auto: the choice in a sentence; empty for the others
   unsigned pilot_passes = 0;  ///< auto: the passes of each strategy the pilot rendered before it chose
+  std::size_t pilot_pixels = 0;  ///< auto: the pixels of the pilot's grid
   /// auto: the pilot's most efficient strategy; the cheapest within a margin of it renders
   /// (options.kind).
   std::string most_efficient;
