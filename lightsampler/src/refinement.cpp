@@ -263,7 +263,7 @@ std::vector<MeasuredPart> grouped_by_parent(const std::vector<MeasuredPart>& par
 RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> maps,
                          const Refinement& refinement) {
   // The mesh and maps checked, and the maps copied, once; each round counts only its parts.
-  const core::HostScene input(mesh, maps);
+  const std::vector<core::DensityMap> checked = core::checked_maps(mesh, maps);
   std::vector<Part> parts(mesh.indices.size() / 3);
   for (std::uint32_t t = 0; t < parts.size(); ++t) parts[t] = {t, {{0, 0}, {1, 0}, {0, 1}}};
   const auto measure = [&](const std::vector<Part>& tried) {
@@ -275,8 +275,8 @@ RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> m
         part_corners(mesh, tried[i], positions, uvs);
         const core::TriangleRecord record =
             core::make_triangle_record(positions, uvs, core::map_of_triangle(mesh, tried[i].parent, maps.size()));
-        const core::TexelTriangle texels = core::make_texel_triangle(record, input.maps());
-        const core::TriangleIntegral integral = core::integrate_triangle(record, texels, input.maps());
+        const core::TexelTriangle texels = core::make_texel_triangle(record, checked);
+        const core::TriangleIntegral integral = core::integrate_triangle(record, texels, checked);
         const double bound = double(integral.max_density) * record.area;
         out[i] = {bound, bound > 0.0 ? integral.expected / bound : 1.0, texel_area(texels), integral.expected,
                   integral.max_density};

@@ -20,12 +20,18 @@ DensityMap copy_map(const DensityMapView& view) {
 
 }  // namespace
 
-HostScene::HostScene(const MeshView& mesh, std::span<const DensityMapView> maps) {
+std::vector<DensityMap> checked_maps(const MeshView& mesh, std::span<const DensityMapView> maps) {
   validate_mesh(mesh, maps.size());
+  std::vector<DensityMap> copies;
+  copies.reserve(maps.size());
   for (std::size_t i = 0; i < maps.size(); ++i) {
     validate_map(maps[i], i);
-    maps_.push_back(copy_map(maps[i]));
+    copies.push_back(copy_map(maps[i]));
   }
+  return copies;
+}
+
+HostScene::HostScene(const MeshView& mesh, std::span<const DensityMapView> maps) : maps_(checked_maps(mesh, maps)) {
   triangles_ = make_triangle_records(mesh, maps.size());
   texel_triangles_.resize(triangles_.size());
   build_texel_triangles(kAllMaps);

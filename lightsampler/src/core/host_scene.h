@@ -14,6 +14,10 @@
 
 namespace lightsampler::core {
 
+/// `maps` checked, with `mesh`, as the samplers check them (validate.h: throws on bad input),
+/// and copied.
+std::vector<DensityMap> checked_maps(const MeshView& mesh, std::span<const DensityMapView> maps);
+
 class HostScene {
  public:
   /// Throws std::invalid_argument / std::length_error on bad input (validate.h).
