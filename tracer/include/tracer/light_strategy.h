@@ -159,8 +159,9 @@ struct PilotMeasure {
   double sampler_tries_per_pass = 0.0;  ///< candidates the light sampler's rejection loops tried
 };
 
-/// The strategies `auto`'s pilot weighs: between them they were the most efficient at equal time
-/// on every scene measured (docs/noise.md, "The default chooses by a pilot").
+/// The strategies `auto`'s pilot weighs: between them the most efficient at equal time on every
+/// scene measured but the damaged helmet, where `restir` is (docs/noise.md, "The default chooses
+/// by a pilot"). restir's reuse draws on neighbouring pixels, which a grid of pilot pixels lacks.
 inline constexpr const char* kPilotStrategies[] = {"power", "trs", "ris"};
 
 /// The pilot's passes of each strategy: rounds of kPilotRoundPasses, at least kMinPilotPasses and
