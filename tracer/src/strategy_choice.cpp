@@ -320,6 +320,7 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
   }
   std::size_t best = 0;
   unsigned passes = 0;
+  bool knew = false;  // whether it stopped because no other strategy can be far ahead
   while (passes < kMaxPilotPasses) {
     for (PilotRun& run : runs) run_passes(run, camera, grid, settings.width, passes, passes + kPilotRoundPasses);
     passes += kPilotRoundPasses;
@@ -327,17 +328,15 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
     const std::vector<std::vector<double>> noise = measure_pilot(runs, passes, options.lights, pixels, choice.pilot);
     best = leader(choice.pilot);
     measure_errors(choice.pilot, noise, best);
-    if (decided(choice.pilot, best) || !within_budget(passes + kPilotRoundPasses)) break;
+    knew = decided(choice.pilot, best);
+    if (knew || !within_budget(passes + kPilotRoundPasses)) break;
   }
   const std::size_t rendering = cheapest_close_to(choice.pilot, best);
   choice.pilot_passes = passes;
   choice.pilot_pixels = grid.size();
   choice.most_efficient = choice.pilot[best].strategy;
   choice.options.kind = choice.pilot[rendering].strategy;
-  // Why it stopped before it knew enough, if it did.
-  const char* stop = decided(choice.pilot, best)     ? ""
-                     : passes == kMaxPilotPasses ? " (its most)"
-                                                 : " (its share of the render)";
+  const char* stop = knew ? "" : passes == kMaxPilotPasses ? " (its most)" : " (its share of the render)";
   choice.reason = pilot_reason(choice.pilot, best, rendering, grid, passes, stop);
   chosen.strategy = make_light_strategy(emitters, choice.options);  // with the render's lights
   chosen.pilot_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
