@@ -109,9 +109,9 @@ TEST(StrategyChoice, TheCheapestCloseToTheMostEfficientRenders) {
     return p;
   };
   EXPECT_EQ(strategy_to_render(pilot(0.5, 0.7, 1.0)), 2u);  // none within the margin
-  EXPECT_EQ(strategy_to_render(pilot(0.9, 0.5, 1.0)), 0u);  // power within it
-  EXPECT_EQ(strategy_to_render(pilot(0.8, 0.9, 1.0)), 1u);  // trs within it, power not
-  EXPECT_EQ(strategy_to_render(pilot(0.9, 0.95, 1.0)), 0u);  // both: the cheaper
+  EXPECT_EQ(strategy_to_render(pilot(0.92, 0.5, 1.0)), 0u);  // power within it
+  EXPECT_EQ(strategy_to_render(pilot(0.85, 0.92, 1.0)), 1u);  // trs within it, power not
+  EXPECT_EQ(strategy_to_render(pilot(0.92, 0.95, 1.0)), 0u);  // both: the cheaper
   EXPECT_EQ(strategy_to_render(pilot(1.0, 1.2, 0.1)), 1u);  // the most efficient, cheapest within
   EXPECT_EQ(strategy_to_render(pilot(1.0, 1.0, 1.0)), 0u);  // a tie: the cheapest
 }

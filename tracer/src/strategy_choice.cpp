@@ -46,11 +46,15 @@ constexpr double kPilotPixels = 4096, kMinPilotPixels = 1024;
 constexpr std::uint64_t kPilotSeed = 0x70696c6f74ull;
 
 /// Unit costs of the pilot's work, in rays (each a closest-hit or shadow ray with the shading
-/// around it): a light sample weighed (drawn, and its BSDF evaluated), and a try of the light
-/// sampler's rejection loop (its point written where kept). The medians of tools/pilot_costs.py
-/// over the 17 shipped scenes and real assets (0.04 to 0.37, and 0.04 to 0.27, by scene).
-constexpr double kPilotLightSampleCost = 0.15;
-constexpr double kPilotSamplerTryCost = 0.10;
+/// around it): a light sample weighed, by strategy in kPilotStrategies' order, and a try of the
+/// light sampler's rejection loop (its point written where kept). A `power` sample draws a point
+/// on a triangle and reads the textures there; a `trs` or `ris` one picks a point light whose
+/// record carries its radiance, and `ris` evaluates each candidate's contribution. Fitted by
+/// tools/pilot_costs.py over the shipped scenes and real assets: the light samples' over all of
+/// them together, the try's the median of the scenes' (0.06 to 0.43 by scene).
+constexpr double kPilotLightSampleCost[] = {0.68, 0.36, 0.28};
+static_assert(std::size(kPilotLightSampleCost) == std::size(kPilotStrategies));
+constexpr double kPilotSamplerTryCost = 0.13;
 
 double texel_gain(Emitters& emitters) {
   lightsampler::Frame frame;
@@ -98,6 +102,7 @@ struct PilotRun {
   /// would hide what they differ by where emitters fill the image.
   std::vector<double> lit;
   std::uint64_t rays = 0, light_queries = 0, sampler_tries = 0;
+  double light_sample_cost = 0.0;  ///< in rays (kPilotLightSampleCost)
 };
 
 /// Renders passes [first, last) of `run`'s strategy over the grid.
@@ -182,7 +187,7 @@ void measure_cost(const PilotRun& run, unsigned passes, std::size_t grid_pixels,
   m.rays_per_path = double(run.rays) / paths;
   m.light_samples_per_path = double(run.light_queries) * run.strategy->candidates() / paths;
   m.sampler_tries_per_pass = double(run.sampler_tries) * lights_scale / passes;
-  m.cost = double(pixels) * (m.rays_per_path + kPilotLightSampleCost * m.light_samples_per_path) +
+  m.cost = double(pixels) * (m.rays_per_path + run.light_sample_cost * m.light_samples_per_path) +
            kPilotSamplerTryCost * m.sampler_tries_per_pass;
 }
 
@@ -312,6 +317,7 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
     o.kind = kPilotStrategies[s];
     o.lights = std::max(1.0, std::round(options.lights * lights_share));
     runs[s].lights = o.lights;
+    runs[s].light_sample_cost = kPilotLightSampleCost[s];
     runs[s].strategy = make_light_strategy(emitters, o);
     runs[s].tracer.emplace(scene, geometry, emitters, *runs[s].strategy, settings.max_depth);
     runs[s].luminance.resize(grid.size() * kMaxPilotPasses);

@@ -151,7 +151,8 @@ struct PilotMeasure {
   /// over the most efficient one's (0 for that one): how well the pilot knew their ratio.
   double relative_error = 0.0;
   /// A pass's work over the whole image, in rays: rays traced, light samples weighed and the
-  /// light sampler's tries, each at its unit cost (kPilotLightSampleCost, kPilotSamplerTryCost).
+  /// light sampler's tries, each at its unit cost (a light sample's by strategy;
+  /// strategy_choice.cpp).
   double cost = 0.0;
   double efficiency = 0.0;  ///< 1 / (relative_variance * cost)
   double rays_per_path = 0.0;
@@ -183,8 +184,9 @@ inline constexpr double kPilotShare = 0.1;
 /// saw, and what it misses most is the rare bright paths that no light strategy draws (light
 /// reached through glass or off a mirror, fireflies): the same for every strategy, lowered only
 /// by more passes, so where the pilot finds strategies close the cheaper one is the better bet.
-/// Chosen on the 16 scenes of docs/noise.md ("The default chooses by a pilot").
-inline constexpr double kCheaperMargin = 0.15;
+/// Chosen on the 16 scenes of docs/noise.md ("The default chooses by a pilot"), with each
+/// strategy's light samples at their own cost.
+inline constexpr double kCheaperMargin = 0.10;
 
 /// Which of the pilot's measures renders: the cheapest of those whose efficiency is within
 /// kCheaperMargin of the most efficient (the first most efficient, in kPilotStrategies' order,
