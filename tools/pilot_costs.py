@@ -13,14 +13,16 @@ candidate's contribution. This tool renders each scene with the three and fits
   sampler ms a pass = c tries                    (trs and ris: drawing and writing the lights)
 
 a_scene, what a ray costs in that scene, per scene, and b_strategy over all the scenes together
-(least squares on the relative error, by alternating the two). The unit costs are b_strategy and
+(least squares on the relative error). The unit costs are b_strategy and
 the median over the scenes of c / a_scene. Prints a Markdown table and the unit costs; writes what it measured as CSV.
 
   tools/pilot_costs.py --render build/bin/trs-render scenes/real/*/ scenes/neon-sign --csv costs.csv
+  tools/pilot_costs.py --rows costs.csv      # the same fit again, without rendering
 """
 import argparse
 import csv
 import statistics
+import sys
 import tempfile
 from pathlib import Path
 
@@ -43,19 +45,29 @@ def measure(render, scene, settings, strategy, args, work):
             "tries": (s["lights_per_pass"] or 0.0) / acceptance if acceptance > 0 else 0.0}
 
 
-def fit(scenes, sweeps=200):
+def fit(scenes, steps=100):
     """Each scene's ms a ray, and each strategy's light sample in rays, from `scenes`: a list of
-    each scene's rows, one a strategy in STRATEGIES' order."""
+    each scene's rows, one a strategy in STRATEGIES' order. Gauss-Newton steps on the errors
+    relative to each time, so that every scene counts alike; the model is bilinear, and they
+    converge where alternating between the two sets of unknowns crawls."""
     t = np.array([[r["tracing_ms"] for r in rows] for rows in scenes])
     rays = np.array([[r["rays"] for r in rows] for rows in scenes])
     samples = np.array([[r["light_samples"] for r in rows] for rows in scenes])
-    w = 1.0 / t**2  # each row's error relative to its time, so that every scene counts alike
-    b = np.full(len(STRATEGIES), 0.15)
-    for _ in range(sweeps):
+    count, strategies = t.shape
+    b = np.full(strategies, 0.15)
+    x = rays + b * samples
+    a = (x / t).sum(axis=1) / (x * x / t**2).sum(axis=1)
+    for _ in range(steps):
         x = rays + b * samples
-        a = (w * t * x).sum(axis=1) / (w * x * x).sum(axis=1)
-        y = a[:, None] * samples
-        b = (w * (t - a[:, None] * rays) * y).sum(axis=0) / (w * y * y).sum(axis=0)
+        error = (t - a[:, None] * x) / t
+        jacobian = np.zeros((count, strategies, count + strategies))
+        for i in range(count):
+            jacobian[i, :, i] = x[i] / t[i]
+            jacobian[i, range(strategies), count + np.arange(strategies)] = a[i] * samples[i] / t[i]
+        step = np.linalg.lstsq(jacobian.reshape(count * strategies, -1), error.ravel(), rcond=None)[0]
+        a, b = a + step[:count], b + step[count:]
+        if np.abs(step[count:]).max() < 1e-12 * max(1.0, np.abs(b).max()):
+            break
     return a, b
 
 
@@ -65,19 +77,8 @@ def sampler_try_cost(rows, ray_ms):
     return sum(r["sampler_ms"] for r in drawn) / sum(r["tries"] for r in drawn) / ray_ms
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("scenes", nargs="+", help="scene folders (scenes/neon-sign) or glTF files")
-    p.add_argument("--render", default="build/bin/trs-render")
-    p.add_argument("--spp", type=int, default=16)
-    p.add_argument("--width", type=int, default=320)
-    p.add_argument("--height", type=int, default=180)
-    p.add_argument("--max-depth", type=int, default=3)
-    p.add_argument("--threads", type=int, default=0)
-    p.add_argument("--repeats", type=int, default=3, help="runs of each strategy; the median of each figure")
-    p.add_argument("--csv", type=Path)
-    args = p.parse_args()
-
+def measured(args):
+    """Each scene's name and its rows (one a strategy), rendered."""
     names, scenes = [], []
     with tempfile.TemporaryDirectory() as tmp:
         for folder in args.scenes:
@@ -89,6 +90,39 @@ def main():
             names.append(str(scene.parent))
             scenes.append(rows)
             print(f"{names[-1]}: measured", flush=True)
+    return names, scenes
+
+
+def read_rows(path):
+    """Each scene's name and its rows, from a CSV this tool wrote."""
+    scenes = {}
+    with open(path, newline="") as f:
+        for row in csv.DictReader(f):
+            name, strategy = row.pop("scene"), row.pop("strategy")
+            scenes.setdefault(name, {})[strategy] = {k: float(v) for k, v in row.items()}
+    missing = [name for name, rows in scenes.items() if set(rows) != set(STRATEGIES)]
+    if missing:
+        sys.exit(f"pilot_costs: {path}: {', '.join(missing)} lack a row of each of {', '.join(STRATEGIES)}")
+    return list(scenes), [[rows[s] for s in STRATEGIES] for rows in scenes.values()]
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("scenes", nargs="*", help="scene folders (scenes/neon-sign) or glTF files")
+    p.add_argument("--render", default="build/bin/trs-render")
+    p.add_argument("--spp", type=int, default=16)
+    p.add_argument("--width", type=int, default=320)
+    p.add_argument("--height", type=int, default=180)
+    p.add_argument("--max-depth", type=int, default=3)
+    p.add_argument("--threads", type=int, default=0)
+    p.add_argument("--repeats", type=int, default=3, help="runs of each strategy; the median of each figure")
+    p.add_argument("--csv", type=Path, help="where to write what was measured")
+    p.add_argument("--rows", type=Path, help="fit what an earlier --csv holds instead of rendering")
+    args = p.parse_args()
+    if bool(args.scenes) == bool(args.rows):
+        p.error("give scenes to render, or --rows")
+
+    names, scenes = read_rows(args.rows) if args.rows else measured(args)
     ray_ms, light_sample_cost = fit(scenes)
     tries = [sampler_try_cost(rows, a) for rows, a in zip(scenes, ray_ms)]
     print("\n| scene | ns a ray | sampler try (rays) | " + " | ".join(f"{s} ms a pass (fit)" for s in STRATEGIES) + " |")
@@ -96,8 +130,8 @@ def main():
     for name, rows, a, c in zip(names, scenes, ray_ms, tries):
         cells = [f"{r['tracing_ms']:.1f} ({a * (r['rays'] + b * r['light_samples']):.1f})"
                  for r, b in zip(rows, light_sample_cost)]
-        print(f"| {name} | {1e6 * a:.0f} | {c:.4f} | " + " | ".join(cells) + " |")
-    print(f"\nsampler try: {statistics.median(tries):.4f} rays (the median over the scenes)")
+        print(f"| {name} | {1e6 * a:.0f} | {c:.3f} | " + " | ".join(cells) + " |")
+    print(f"\nsampler try: {statistics.median(tries):.3f} rays (the median over the scenes)")
     for strategy, b in zip(STRATEGIES, light_sample_cost):
         print(f"light sample of {strategy}: {b:.3f} rays")
     if args.csv:  # what was measured, to fit again
@@ -106,7 +140,6 @@ def main():
             writer.writeheader()
             for name, rows in zip(names, scenes):
                 writer.writerows({"scene": name, "strategy": s, **r} for s, r in zip(STRATEGIES, rows))
-
 
 if __name__ == "__main__":
     main()
