@@ -85,7 +85,7 @@ TEST(Refinement, PartsTileTheirTriangles) {
     ASSERT_GT(refined.levels(), 1u) << s.name;
     std::vector<double> area(s.mesh.indices.size() / 3, 0.0);
     for (std::uint32_t part = 0; part < refined.triangle_count(); ++part)
-      area[refined.parent(part)] += triangle_area(refined.view(), part);
+      area[refined.parent(part)] += triangle_area(refined.view(s.mesh.view()), part);
     for (std::uint32_t t = 0; t < area.size(); ++t)
       EXPECT_NEAR(area[t], triangle_area(s.mesh.view(), t), 1e-5 * area[t]) << s.name << ", " << t;
   }
@@ -103,8 +103,8 @@ TEST(Refinement, APartsSampleIsTheSamePointOfItsTriangle) {
       ASSERT_GE(back.b1, 0.0f);
       ASSERT_GE(back.b2, 0.0f);
       ASSERT_LE(back.b1 + back.b2, 1.0f);
-      const Float3 p = position(refined.view(), local), q = position(s.mesh.view(), back);
-      const Float2 u = uv(refined.view(), local), w = uv(s.mesh.view(), back);
+      const Float3 p = position(refined.view(s.mesh.view()), local), q = position(s.mesh.view(), back);
+      const Float2 u = uv(refined.view(s.mesh.view()), local), w = uv(s.mesh.view(), back);
       EXPECT_NEAR(p.x, q.x, 1e-5f);
       EXPECT_NEAR(p.y, q.y, 1e-5f);
       EXPECT_NEAR(p.z, q.z, 1e-5f);
@@ -191,7 +191,7 @@ TEST(Refinement, RejectsPartSamplesKeptInThePartsCoordinates) {
   const DensityMapView view = s.map.view();
   const RefinedMesh refined(s.mesh.view(), {&view, 1}, kEager);
   Frame frame;
-  make_cpu_sampler(refined.view(), {&view, 1})->generate({.seed = s.seed, .target_count = s.target}, frame);
+  make_cpu_sampler(refined.view(s.mesh.view()), {&view, 1})->generate({.seed = s.seed, .target_count = s.target}, frame);
   std::vector<Sample> right, wrong;
   for (const Sample& x : frame.samples) {
     right.push_back(refined.to_parent(x));
@@ -254,13 +254,17 @@ struct Strokes {
   }
 };
 
-/// Expected candidates a frame of `samples` draws on the parts, plus the parts' own work.
-double frame_cost(const RefinedMesh& refined, const DensityMapView& map, double samples, float part_cost) {
+/// Expected candidates a frame of `samples` draws on the parts `refinement` makes of `mesh`, plus
+/// the parts' own work.
+double frame_cost(const MeshView& mesh, const DensityMapView& map, const Refinement& refinement, double samples,
+                  float part_cost) {
+  const RefinedMesh refined(mesh, {&map, 1}, refinement);
+  const MeshView parts = refined.view(mesh);
   Frame frame;
-  make_cpu_sampler(refined.view(), {&map, 1})->generate({.seed = 1, .realize = false}, frame);
+  make_cpu_sampler(parts, {&map, 1})->generate({.seed = 1, .realize = false}, frame);
   double bound = 0.0;
   for (std::uint32_t t = 0; t < refined.triangle_count(); ++t)
-    bound += double(frame.max_density[t]) * triangle_area(refined.view(), t);
+    bound += double(frame.max_density[t]) * triangle_area(parts, t);
   return samples * bound / frame.expected_total + part_cost * refined.triangle_count();
 }
 
@@ -324,12 +328,9 @@ TEST(RefinementCostModel, ItsPartsCostLessThanTheWholeOrOneRoundOfSplits) {
   const DensityMapView view = strokes.map.view();
   for (double samples : {3e4, 3e5, 3e6}) {
     const Refinement refinement = auto_refinement(samples);
-    const double cost = frame_cost(RefinedMesh(strokes.mesh.view(), {&view, 1}, refinement), view, samples,
-                                   refinement.part_cost);
-    const double whole = frame_cost(RefinedMesh(strokes.mesh.view(), {&view, 1}, {}), view, samples,
-                                    refinement.part_cost);
-    const double blind = frame_cost(RefinedMesh(strokes.mesh.view(), {&view, 1}, kEager), view, samples,
-                                    refinement.part_cost);
+    const double cost = frame_cost(strokes.mesh.view(), view, refinement, samples, refinement.part_cost);
+    const double whole = frame_cost(strokes.mesh.view(), view, {}, samples, refinement.part_cost);
+    const double blind = frame_cost(strokes.mesh.view(), view, kEager, samples, refinement.part_cost);
     EXPECT_LT(cost, whole) << samples;
     EXPECT_LT(cost, blind) << samples;
   }
@@ -347,7 +348,7 @@ TEST(Refinement, APointClearOfTexelEdgesReadsItsTexelEitherWay) {
   for (const Scenario& s : trs_test::scenarios()) {
     const DensityMapView view = s.map.view();
     const RefinedMesh refined(s.mesh.view(), {&view, 1}, kEager);
-    const core::HostScene parts(refined.view(), {&view, 1}), triangles(s.mesh.view(), {&view, 1});
+    const core::HostScene parts(refined.view(s.mesh.view()), {&view, 1}), triangles(s.mesh.view(), {&view, 1});
     for (std::uint32_t part = 0; part < refined.triangle_count(); ++part) {
       const core::TexelTriangle& pt = parts.texel_triangles()[part];
       if (!(std::abs(pt.edge1[0]) > 0.0f)) continue;
@@ -388,7 +389,7 @@ TEST(Refinement, ItsMeasuresAreTheBackendsCounts) {
     for (const Refinement& refinement : {kEager, auto_refinement(s.target), auto_refinement(1.0)}) {
       const RefinedMesh refined(s.mesh.view(), {&view, 1}, refinement);
       Frame counted;
-      make_cpu_sampler(refined.view(), {&view, 1})->generate({.seed = 1, .realize = false}, counted);
+      make_cpu_sampler(refined.view(s.mesh.view()), {&view, 1})->generate({.seed = 1, .realize = false}, counted);
       ASSERT_EQ(refined.expected_counts().size(), refined.triangle_count()) << s.name;
       for (std::uint32_t t = 0; t < refined.triangle_count(); ++t) {
         EXPECT_EQ(refined.expected_counts()[t], counted.expected_counts[t]) << s.name << ", part " << t;

@@ -130,7 +130,7 @@ class RefinedSampler final : public Sampler {
     const auto start = std::chrono::steady_clock::now();
     RefinedMesh refined(mesh_.view(), maps, refinement_);
     subdivision_ms_ = ms_since(start);
-    parts_ = backend_(refined.levels() == 0 ? mesh_.view() : refined.view(), maps);
+    parts_ = backend_(refined.view(mesh_.view()), maps);
     // The subdivision measured every part it keeps (with no split, every triangle) as a count
     // would: the first frame need not count them again.
     if (!refined.expected_counts().empty()) parts_->use_counts(refined.expected_counts(), refined.max_density());

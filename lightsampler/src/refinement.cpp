@@ -101,12 +101,6 @@ std::vector<bool> splits_that_pay(const std::vector<std::size_t>& tried, const s
   return pays;
 }
 
-std::vector<MeasuredPart> unsplit(const std::vector<Part>& parts, const std::vector<Measure>& measured) {
-  std::vector<MeasuredPart> out(parts.size());
-  for (std::size_t i = 0; i < parts.size(); ++i) out[i] = {parts[i], measured[i]};
-  return out;
-}
-
 /// A part the cost model explored, and where its four parts are, if it was split.
 struct Node {
   Part part;
@@ -120,13 +114,14 @@ struct Node {
 /// where a part's wasted candidates (its bound less its integral, in candidates of a frame)
 /// could pay for three more parts, the most wasteful first within the budget of parts; then
 /// every explored split is kept or undone bottom-up, whichever leaves the part and what lies
-/// below it cheaper per frame: candidates drawn plus part_cost per part.
+/// below it cheaper per frame: candidates drawn plus part_cost per part. Raises `levels` to the
+/// deepest split kept; where none is, the parts are the roots (and may not be returned).
 template <class Measurer>
 std::vector<MeasuredPart> split_by_cost(const std::vector<Part>& roots, const std::vector<Measure>& measured,
                                 const Refinement& refinement, const Measurer& measure, std::uint32_t& levels) {
   const double total = std::accumulate(measured.begin(), measured.end(), 0.0,
                                        [](double sum, const Measure& m) { return sum + m.expected; });
-  if (!(total > 0.0)) return unsplit(roots, measured);
+  if (!(total > 0.0)) return {};
   const double candidates_per_bound = refinement.frame_samples / total;
   const double split_cost = 3.0 * double(refinement.part_cost);
   const auto wasted = [&](const Measure& m) { return candidates_per_bound * (m.bound - m.expected); };
@@ -138,7 +133,7 @@ std::vector<MeasuredPart> split_by_cost(const std::vector<Part>& roots, const st
            wasted(m) > split_cost + measuring;
   };
   // Most triangles of a large mesh are not worth a split: where none is, the parts are the roots.
-  if (std::none_of(measured.begin(), measured.end(), worth_exploring)) return unsplit(roots, measured);
+  if (std::none_of(measured.begin(), measured.end(), worth_exploring)) return {};
   const std::uint64_t room = refinement.max_triangles > roots.size() ? refinement.max_triangles - roots.size() : 0;
   std::uint64_t budget = std::min<std::uint64_t>(
       room, std::uint64_t(std::max(0.0, double(refinement.parts_per_sample) * refinement.frame_samples)));
@@ -285,24 +280,30 @@ RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> m
     return out;
   };
   if (refinement.min_acceptance > 0.0f && refinement.max_levels > 0) {
-    std::vector<Measure> measured = measure(parts);
-    // Parts of one triangle side by side: the sampler walks them in order.
-    const std::vector<MeasuredPart> kept = grouped_by_parent(
+    const std::vector<Measure> measured = measure(parts);
+    const std::vector<MeasuredPart> split =
         splits_by_cost(refinement) ? split_by_cost(parts, measured, refinement, measure, levels_)
-                                   : split_by_acceptance(std::move(parts), std::move(measured), refinement, measure,
-                                                         levels_),
-        mesh.indices.size() / 3);
-    parts.resize(kept.size());
-    expected_counts_.resize(kept.size());
-    max_density_.resize(kept.size());
-    for (std::size_t i = 0; i < kept.size(); ++i) {
-      parts[i] = kept[i].part;
-      expected_counts_[i] = kept[i].measure.expected;
-      max_density_[i] = kept[i].measure.max_density;
+                                   : split_by_acceptance(parts, measured, refinement, measure, levels_);
+    expected_counts_.resize(levels_ > 0 ? split.size() : parts.size());
+    max_density_.resize(expected_counts_.size());
+    if (levels_ == 0) {  // nothing split: the parts are the triangles, as measured
+      for (std::size_t i = 0; i < parts.size(); ++i) {
+        expected_counts_[i] = measured[i].expected;
+        max_density_[i] = measured[i].max_density;
+      }
+    } else {
+      // Parts of one triangle side by side: the sampler walks them in order.
+      const std::vector<MeasuredPart> kept = grouped_by_parent(split, mesh.indices.size() / 3);
+      parts.resize(kept.size());
+      for (std::size_t i = 0; i < kept.size(); ++i) {
+        parts[i] = kept[i].part;
+        expected_counts_[i] = kept[i].measure.expected;
+        max_density_[i] = kept[i].measure.max_density;
+      }
     }
   }
   parts_ = std::move(parts);
-  build(mesh);
+  if (levels_ > 0) build(mesh);  // with no split the caller's mesh is the refined one
 }
 
 void RefinedMesh::part_corners(const MeshView& mesh, const Part& part, float (&positions)[3][3], float (&uvs)[3][2]) {

@@ -100,7 +100,10 @@ class RefinedMesh {
   RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> maps,
               const Refinement& refinement);
 
-  MeshView view() const { return {positions_, uvs_, indices_, triangle_maps_}; }
+  /// The parts as a mesh; `mesh`, the one split, where nothing split (levels() == 0).
+  MeshView view(const MeshView& mesh) const {
+    return levels_ > 0 ? MeshView{positions_, uvs_, indices_, triangle_maps_} : mesh;
+  }
   std::uint32_t triangle_count() const { return std::uint32_t(parts_.size()); }
   /// The caller's triangle that part `part` lies in.
   std::uint32_t parent(std::uint32_t part) const { return parts_[part].parent; }
