@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <numeric>
 
@@ -114,8 +115,9 @@ struct Node {
 /// where a part's wasted candidates (its bound less its integral, in candidates of a frame)
 /// could pay for three more parts, the most wasteful first within the budget of parts; then
 /// every explored split is kept or undone bottom-up, whichever leaves the part and what lies
-/// below it cheaper per frame: candidates drawn plus part_cost per part. Raises `levels` to the
-/// deepest split kept; where none is, the parts are the roots (and may not be returned).
+/// below it cheaper per frame: candidates drawn plus part_cost per part. Those of a root side
+/// by side, in root order. Raises `levels` to the deepest split kept; where none is, the parts
+/// are the roots (and may not be returned).
 template <class Measurer>
 std::vector<MeasuredPart> split_by_cost(const std::vector<Part>& roots, const std::vector<Measure>& measured,
                                 const Refinement& refinement, const Measurer& measure, std::uint32_t& levels) {
@@ -138,8 +140,9 @@ std::vector<MeasuredPart> split_by_cost(const std::vector<Part>& roots, const st
   std::uint64_t budget = std::min<std::uint64_t>(
       room, std::uint64_t(std::max(0.0, double(refinement.parts_per_sample) * refinement.frame_samples)));
 
-  std::vector<Node> nodes;
-  nodes.reserve(roots.size());
+  // A deque: the explored parts grow by levels into the millions, and a vector's growth would
+  // copy and touch them again each time it doubles.
+  std::deque<Node> nodes;
   for (std::size_t i = 0; i < roots.size(); ++i) nodes.push_back({roots[i], measured[i], 0});
   std::vector<std::size_t> frontier(nodes.size());
   std::iota(frontier.begin(), frontier.end(), std::size_t(0));
@@ -172,6 +175,7 @@ std::vector<MeasuredPart> split_by_cost(const std::vector<Part>& roots, const st
   // Children come after their parent: one pass from the back settles every split.
   std::vector<double> cost(nodes.size());
   std::vector<bool> kept(nodes.size(), false);
+  std::vector<std::size_t> leaves(nodes.size(), 1);  // the parts a node leaves, its split settled
   for (std::size_t i = nodes.size(); i-- > 0;) {
     const Node& n = nodes[i];
     const double whole = candidates_per_bound * n.measure.bound + refinement.part_cost;
@@ -179,8 +183,11 @@ std::vector<MeasuredPart> split_by_cost(const std::vector<Part>& roots, const st
     if (n.explored()) parts = cost[n.first_child] + cost[n.first_child + 1] + cost[n.first_child + 2] + cost[n.first_child + 3];
     kept[i] = parts < whole;
     cost[i] = std::min(whole, parts);
+    if (kept[i])
+      leaves[i] = leaves[n.first_child] + leaves[n.first_child + 1] + leaves[n.first_child + 2] + leaves[n.first_child + 3];
   }
   std::vector<MeasuredPart> parts;
+  parts.reserve(std::accumulate(leaves.begin(), leaves.begin() + std::ptrdiff_t(roots.size()), std::size_t(0)));
   std::vector<std::size_t> stack;
   for (std::size_t root = 0; root < roots.size(); ++root) {
     stack.push_back(root);
@@ -198,12 +205,25 @@ std::vector<MeasuredPart> split_by_cost(const std::vector<Part>& roots, const st
   return parts;
 }
 
+/// The parts, those of each triangle together in triangle order and in their order among
+/// themselves: a counting sort, linear in the parts and the triangles.
+std::vector<MeasuredPart> grouped_by_parent(const std::vector<MeasuredPart>& parts, std::size_t triangles) {
+  std::vector<std::size_t> first(triangles + 1, 0);
+  for (const MeasuredPart& p : parts) ++first[p.part.parent + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<MeasuredPart> grouped(parts.size());
+  for (const MeasuredPart& p : parts) grouped[first[p.part.parent]++] = p;
+  return grouped;
+}
+
 /// The parts of the acceptance rules: every part below min_acceptance is split, round by round,
-/// and a small part's split is kept only where it pays (splits_that_pay).
+/// and a small part's split is kept only where it pays (splits_that_pay). Those of a triangle
+/// side by side, in triangle order.
 template <class Measurer>
 std::vector<MeasuredPart> split_by_acceptance(std::vector<Part> open, std::vector<Measure> measured,
                                               const Refinement& refinement, const Measurer& measure,
                                               std::uint32_t& levels) {
+  const std::size_t triangles = open.size();
   std::vector<MeasuredPart> done;
   std::vector<Part> children, next;
   std::vector<Measure> child_measured, next_measured;
@@ -239,18 +259,7 @@ std::vector<MeasuredPart> split_by_acceptance(std::vector<Part> open, std::vecto
     measured.swap(next_measured);
   }
   for (std::size_t i = 0; i < open.size(); ++i) done.push_back({open[i], measured[i]});
-  return done;
-}
-
-/// The parts, those of each triangle together in triangle order and in their order among
-/// themselves: a counting sort, linear in the parts and the triangles.
-std::vector<MeasuredPart> grouped_by_parent(const std::vector<MeasuredPart>& parts, std::size_t triangles) {
-  std::vector<std::size_t> first(triangles + 1, 0);
-  for (const MeasuredPart& p : parts) ++first[p.part.parent + 1];
-  std::partial_sum(first.begin(), first.end(), first.begin());
-  std::vector<MeasuredPart> grouped(parts.size());
-  for (const MeasuredPart& p : parts) grouped[first[p.part.parent]++] = p;
-  return grouped;
+  return grouped_by_parent(done, triangles);
 }
 
 }  // namespace
@@ -292,13 +301,11 @@ RefinedMesh::RefinedMesh(const MeshView& mesh, std::span<const DensityMapView> m
         max_density_[i] = measured[i].max_density;
       }
     } else {
-      // Parts of one triangle side by side: the sampler walks them in order.
-      const std::vector<MeasuredPart> kept = grouped_by_parent(split, mesh.indices.size() / 3);
-      parts.resize(kept.size());
-      for (std::size_t i = 0; i < kept.size(); ++i) {
-        parts[i] = kept[i].part;
-        expected_counts_[i] = kept[i].measure.expected;
-        max_density_[i] = kept[i].measure.max_density;
+      parts.resize(split.size());  // those of a triangle side by side: the sampler walks them in order
+      for (std::size_t i = 0; i < split.size(); ++i) {
+        parts[i] = split[i].part;
+        expected_counts_[i] = split[i].measure.expected;
+        max_density_[i] = split[i].measure.max_density;
       }
     }
   }
