@@ -84,9 +84,16 @@ class RefinedSampler final : public Sampler {
     const auto back = std::chrono::steady_clock::now();
     if (request.realize && request.vulkan.read_back) {
       std::span<Sample> samples = frame.samples.span();
+      // A part's samples lie side by side: its triangle's texel margin is taken once for them.
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, samples.size(), 1 << 14),
                         [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i < r.end(); ++i) samples[i] = on_its_texel(samples[i]);
+                          for (std::size_t i = r.begin(); i < r.end();) {
+                            const std::uint32_t part = samples[i].triangle;
+                            const core::TexelTriangle& t = input_.texel_triangles()[refined_->parent(part)];
+                            const float margin = core::texel_edge_margin(t);
+                            for (; i < r.end() && samples[i].triangle == part; ++i)
+                              samples[i] = on_its_texel(samples[i], t, margin);
+                          }
                         });
     }
     const std::size_t n = input_.triangles().size();
@@ -106,9 +113,10 @@ class RefinedSampler final : public Sampler {
   /// then read the density of a texel it was not drawn from (one without any, perhaps): it is
   /// moved back by a millionth of the triangle, along whichever barycentric axis crosses back.
   /// Most points lie well inside a texel: they are checked by arithmetic alone.
-  Sample on_its_texel(const Sample& part_sample) const {
+  /// `t` is the triangle's texel triangle, and `margin` its texel_edge_margin.
+  Sample on_its_texel(const Sample& part_sample, const core::TexelTriangle& t, float margin) const {
     const Sample s = refined_->to_parent(part_sample);
-    if (core::clear_of_texel_edges(input_.texel_triangles()[s.triangle], s.b1, s.b2)) return s;
+    if (core::clear_of_texel_edges(t, margin, s.b1, s.b2)) return s;
     const std::optional<Texel> drawn = parts_->maps().texel(part_sample.triangle, part_sample.b1, part_sample.b2);
     const auto on_drawn = [&](const Sample& x) {
       const std::optional<Texel> t = input_.texel(x.triangle, x.b1, x.b2);

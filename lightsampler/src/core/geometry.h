@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <vector>
@@ -68,24 +69,33 @@ inline std::optional<Texel> texel_triangle_texel(const TexelTriangle& t,
   return cell_texel(maps[t.map], t.map, floor_to_int(x), floor_to_int(y));
 }
 
-/// Whether the point lies so far inside its texel that the same point computed another way (a
-/// part of the triangle with its own corners rounded to floats, and barycentrics mapped between
-/// the two) reads the same texel. Each way rounds a handful of times at the magnitude of the
-/// triangle's texel coordinates, by 2^-24 of it at most each; the margin is 2^-18 of it.
-inline bool clear_of_texel_edges(const TexelTriangle& t, float b1, float b2) {
+/// How far inside its texel, in texels, a point of `t` must lie to read the same texel however
+/// it is computed (a part of the triangle with its own corners rounded to floats, and
+/// barycentrics mapped between the two). Each way rounds a handful of times at the magnitude of
+/// the triangle's texel coordinates, by 2^-24 of it at most each; the margin is 2^-18 of it, and
+/// infinite where that would be half a texel or more: no point is then clear.
+inline float texel_edge_margin(const TexelTriangle& t) {
   const float magnitude =
       std::max(std::abs(t.origin[0]) + std::abs(t.edge1[0]) + std::abs(t.edge2[0]),
                std::abs(t.origin[1]) + std::abs(t.edge1[1]) + std::abs(t.edge2[1]));
-  if (!(magnitude < 0x1p17f)) return false;  // a margin of half a texel or more: nothing is clear
-  const float margin = magnitude * 0x1p-18f;
+  return magnitude < 0x1p17f ? magnitude * 0x1p-18f : std::numeric_limits<float>::infinity();
+}
+
+/// Whether the point lies `margin` (texel_edge_margin(t)) or more inside its texel.
+inline bool clear_of_texel_edges(const TexelTriangle& t, float margin, float b1, float b2) {
   const auto [x, y] = texel_space_point(t, b1, b2);
   // Distance to the nearest lattice line: adding and removing 1.5 * 2^23 rounds to an integer,
-  // exactly below 2^22 (branch-free, where floor_to_int converts twice).
+  // exactly below 2^22, where every finite margin holds (branch-free, where floor_to_int
+  // converts twice).
   const auto clear = [margin](float v) {
     constexpr float kRound = 0x1.8p23f;
     return std::abs(v - ((v + kRound) - kRound)) > margin;
   };
   return clear(x) && clear(y);
+}
+
+inline bool clear_of_texel_edges(const TexelTriangle& t, float b1, float b2) {
+  return clear_of_texel_edges(t, texel_edge_margin(t), b1, b2);
 }
 
 }  // namespace lightsampler::core
