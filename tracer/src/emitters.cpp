@@ -29,6 +29,8 @@ Emitters::Emitters(const Scene& scene, const lightsampler::SamplerOptions& sampl
       maps_(std::make_unique<EmissionMaps>(scene, frame, seconds)) {
   const auto start = std::chrono::steady_clock::now();
   lights_of_scene_.assign(scene.mesh.triangle_count(), kNotLight);
+  reserve(std::size_t(std::count_if(scene.mesh.materials.begin(), scene.mesh.materials.end(),
+                                    [&](std::uint32_t m) { return maps_->map_of(m).has_value(); })));
   for (std::uint32_t t = 0; t < scene.mesh.triangle_count(); ++t) {
     if (const std::optional<std::uint32_t> map = maps_->map_of(scene.mesh.materials[t])) add_light(t, *map);
   }
@@ -69,6 +71,16 @@ EmissionUpdate Emitters::set_frame(std::int64_t frame, double seconds) {
   integrate();
   update.counting_ms = ms_since(start);
   return update;
+}
+
+void Emitters::reserve(std::size_t lights) {
+  scene_triangles_.reserve(lights);
+  indices_.reserve(3 * lights);
+  positions_.reserve(9 * lights);
+  uvs_.reserve(6 * lights);
+  light_maps_.reserve(lights);
+  areas_.reserve(lights);
+  normals_.reserve(lights);
 }
 
 void Emitters::add_light(std::uint32_t triangle, std::uint32_t map) {

@@ -120,6 +120,9 @@ class Emitters {
   const EmittersSetup& setup() const { return setup_; }
 
  private:
+  /// Room for `lights` in the lights' arrays: millions of them would otherwise be copied as
+  /// the arrays grow.
+  void reserve(std::size_t lights);
   void add_light(std::uint32_t triangle, std::uint32_t map);
   /// The lights' integrals, from the sampler's counting pass.
   void integrate();
