@@ -52,8 +52,8 @@ constexpr std::uint64_t kPilotSeed = 0x70696c6f74ull;
 /// record carries its radiance, and `ris` evaluates each candidate's contribution. Fitted by
 /// tools/pilot_costs.py over the shipped scenes and real assets: the light samples' over all of
 /// them together, the try's the median of the scenes' (0.08 to 0.53 by scene). A light sample
-/// and a ray trade off within a scene, so the samples' level is only roughly known (a fifth to
-/// twice these, by scene resampled), but how a pass of one strategy compares with another's,
+/// and a ray trade off within a scene, so the samples' level is only roughly known (half to
+/// twice these, with the scenes resampled), but how a pass of one strategy compares with another's,
 /// which decides, is known to a few percent.
 constexpr double kPilotLightSampleCost[] = {1.53, 1.15, 0.56};
 static_assert(std::size(kPilotLightSampleCost) == std::size(kPilotStrategies));
