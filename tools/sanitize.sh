@@ -22,6 +22,9 @@ exclude=(
   # The real assets' renders, minutes under AddressSanitizer: the same renderer and loaders run
   # in the shipped and material scenes' render cases, and the fuzzers feed the loaders.
   'render\.real-.*'
+  # Uniform sampling's render cases (four times the others' samples) and the experimental
+  # strategies': the renderer and loaders under them run in the other strategies' cases.
+  'render\..*\.(uniform|texel|tree-texel)'
 )
 filter=(-E "^($(IFS='|'; echo "${exclude[*]}"))\$")
 if [ "${1:-}" = --all ]; then
