@@ -56,6 +56,25 @@ class Fit(unittest.TestCase):
             np.testing.assert_allclose(over_trs(b), over_trs(self.costs), rtol=0.02)
 
 
+class ReuseCosts(unittest.TestCase):
+    def test_reuse_made_up_from_known_costs_gives_its_costs_back(self):
+        ris, e, d = 0.56, 1.5, 0.6
+        rng = np.random.default_rng(7)
+        rows, ray_ms = [], []
+        for a in (2e-4, 3e-4, 4e-4, 2.5e-4):
+            r = {"rays": rng.uniform(2e5, 6e5), "light_samples": rng.uniform(4e5, 8e5), "camera_rays": 57600.0,
+                 "reuse_candidates": 4 * 50000.0, "targets": 57600.0 * rng.uniform(2.0, 15.0)}
+            whole = a * (r["rays"] + ris * (r["light_samples"] + r["reuse_candidates"]) + e * r["camera_rays"] +
+                         d * r["targets"])
+            r["reuse_ms"] = 0.4 * whole
+            r["tracing_ms"] = whole - r["reuse_ms"]
+            rows.append(r)
+            ray_ms.append(a)
+        np.testing.assert_allclose(pilot_costs.reuse_costs(rows, ray_ms, ris), (e, d), rtol=1e-9)
+        # Scenes whose reuse evaluated nothing say nothing of the costs.
+        self.assertIsNone(pilot_costs.reuse_costs([{**r, "targets": 0.0} for r in rows], ray_ms, ris))
+
+
 if __name__ == "__main__":
     p = argparse.ArgumentParser()
     p.add_argument("--tools", type=Path, required=True)

@@ -142,7 +142,7 @@ TEST(StrategyChoice, ThePilotStopsOnceNoOtherCanBeFarAhead) {
 
 /// The choice follows the rule above from the pilot's own measures, in rounds within the bounds.
 void expect_consistent(const StrategyChoice& choice) {
-  ASSERT_EQ(choice.pilot.size(), std::size(kPilotStrategies));
+  ASSERT_EQ(choice.pilot.size(), std::size(kPilotStrategies) + (choice.pilot_block_pixels > 0 ? 1 : 0));
   EXPECT_EQ(choice.options.kind, choice.pilot[strategy_to_render(choice.pilot)].strategy) << efficiencies(choice);
   EXPECT_GE(choice.pilot_passes, kMinPilotPasses);
   EXPECT_LE(choice.pilot_passes, kMaxPilotPasses);
@@ -160,10 +160,31 @@ TEST(StrategyChoice, TheTextureDecides) {
 TEST(StrategyChoice, OrientationDecides) {
   const StrategyChoice choice = render(facing_away(), settings()).strategy_choice;
   expect_consistent(choice);
-  EXPECT_EQ(choice.options.kind, "ris") << efficiencies(choice);
+  // The strategies that weigh candidates by their contribution: ris, or restir reusing its samples.
+  EXPECT_TRUE(choice.options.kind == "ris" || choice.options.kind == "restir") << efficiencies(choice);
   EXPECT_EQ(choice.pilot_passes, kMinPilotPasses) << efficiencies(choice);  // far ahead: known at once
   EXPECT_GT(measure_of(choice, "ris").efficiency, 1.5 * measure_of(choice, "power").efficiency)
       << efficiencies(choice);
+}
+
+// restir is weighed on blocks of neighbouring pixels, against ris on the same pixels: where
+// lights face many ways and only direct light is rendered, its reuse lowers ris's noise, at the
+// cost of its target evaluations. Without scattering its reservoirs light nothing, and the pilot
+// does not weigh it.
+TEST(StrategyChoice, ReuseIsWeighedOnBlocks) {
+  const StrategyChoice choice = render(facing_away(), settings()).strategy_choice;
+  EXPECT_GT(choice.pilot_block_pixels, 0u);
+  const PilotMeasure &ris = measure_of(choice, "ris"), &restir = measure_of(choice, "restir");
+  EXPECT_LT(restir.relative_variance, 0.8 * ris.relative_variance) << efficiencies(choice);
+  EXPECT_GT(restir.targets_per_path, 1.0) << efficiencies(choice);
+  EXPECT_GT(restir.cost, ris.cost) << efficiencies(choice);
+  EXPECT_EQ(ris.targets_per_path, 0.0);
+
+  RenderSettings direct = settings();
+  direct.max_depth = 0;
+  const StrategyChoice without = render(facing_away(), direct).strategy_choice;
+  EXPECT_EQ(without.pilot_block_pixels, 0u);
+  EXPECT_THROW(measure_of(without, "restir"), std::runtime_error);
 }
 
 TEST(StrategyChoice, CostDecides) {
@@ -210,7 +231,7 @@ TEST(StrategyChoice, ThePilotSpendsItsShareOfTheRender) {
     return Renderer(scene, s).render({}, cancel).strategy_choice;
   };
   const auto pilot_paths = [](const StrategyChoice& c) {
-    return double(c.pilot_passes) * double(c.pilot.size()) * double(c.pilot_pixels);
+    return double(c.pilot_passes) * double(std::size(kPilotStrategies) * c.pilot_pixels + 2 * c.pilot_block_pixels);
   };
   const StrategyChoice short_render = choice_at(2), long_render = choice_at(64);
   expect_consistent(short_render);

@@ -114,6 +114,7 @@ nlohmann::json strategy_choice_json(const tracer::StrategyOptions& asked, const 
                      {"efficiency", m.efficiency},
                      {"rays_per_path", m.rays_per_path},
                      {"light_samples_per_path", m.light_samples_per_path},
+                     {"targets_per_path", m.targets_per_path},
                      {"sampler_tries_per_pass", m.sampler_tries_per_pass}});
   return {{"asked", asked.kind},
           {"used", choice.options.kind},
@@ -121,6 +122,7 @@ nlohmann::json strategy_choice_json(const tracer::StrategyOptions& asked, const 
           {"pilot", pilot},
           {"pilot_passes", choice.pilot_passes},
           {"pilot_pixels", choice.pilot_pixels},
+          {"pilot_block_pixels", choice.pilot_block_pixels},
           {"most_efficient", choice.most_efficient},
           {"reason", choice.reason}};
 }
@@ -256,6 +258,8 @@ nlohmann::json current_stats_json(const RenderOptions& options, const tracer::Re
       {"sampler_stages_ms", stages},
       {"light_records_ms_per_pass", sampler.records_ms},
       {"reuse_ms_per_pass", reuse_ms(result) ? nlohmann::json(*reuse_ms(result)) : nlohmann::json()},
+      {"reuse_candidates", result.reuse_candidates},
+      {"reuse_target_evaluations", result.reuse_targets},
       {"tracing_ms_per_pass", tracing_ms(result, sampler)},
       {"lights_per_pass", sampler.mean_lights},
       {"acceptance_rate", sampler.acceptance},

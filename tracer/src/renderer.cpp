@@ -108,9 +108,6 @@ void for_each_pixel(const RenderSettings& settings, const std::atomic<bool>& can
                     });
 }
 
-/// The streams of restir's reservoirs and of its choice of neighbours, apart from the paths'.
-constexpr std::uint64_t kGatherStream = 0x676174686572ull, kSpatialStream = 0x7370617469616cull;
-
 }  // namespace
 
 struct Renderer::State {
@@ -139,6 +136,7 @@ struct Renderer::State {
     Accumulator pixels;
     std::vector<LightPass> light_passes;
     std::vector<double> reuse_ms;
+    ReuseWork reuse_work;
     unsigned passes = 0;
     double seconds = 0.0;
     std::uint64_t rays = 0;
@@ -155,10 +153,16 @@ struct Renderer::State {
         emitters(s, sampler_options(r), f, animation_seconds(f, r.fps)),
         camera(scene_camera(s), r.width, r.height),
         chosen(choose_strategy(s, geometry, lit(emitters, s), camera, r)) {
-    tracer.emplace(s, geometry, emitters, *chosen.strategy, r.max_depth);
+    make_tracer();
+  }
+
+  /// The path tracer and reuse of the chosen strategy.
+  void make_tracer() {
+    reuse.reset();
+    tracer.emplace(scene, geometry, emitters, *chosen.strategy, settings.max_depth);
     const ReuseOptions* options = reuse_of(*chosen.strategy);
-    if (options && r.max_depth > 0)  // without scattering nothing is lit by a light sample
-      reuse.emplace(*tracer, emitters, *chosen.strategy, *options, r.width, r.height);
+    if (options && settings.max_depth > 0)  // without scattering nothing is lit by a light sample
+      reuse.emplace(*tracer, emitters, *chosen.strategy, *options, settings.width, settings.height);
   }
 
   LightStrategy& strategy() const { return *chosen.strategy; }
@@ -185,10 +189,11 @@ EmissionUpdate Renderer::set_frame(std::int64_t frame) {
   EmissionUpdate update = s.emitters.set_frame(frame, animation_seconds(frame, s.settings.fps));
   if (update.changed()) {
     const auto start = Clock::now();
-    if (s.settings.strategy.kind == kAutoStrategy) {  // auto never chooses restir: no reuse to remake
+    if (s.settings.strategy.kind == kAutoStrategy) {
+      s.reuse.reset();
       s.tracer.reset();
       s.chosen = choose_strategy(s.scene, s.geometry, s.emitters, s.camera, s.settings);
-      s.tracer.emplace(s.scene, s.geometry, s.emitters, *s.chosen.strategy, s.settings.max_depth);
+      s.make_tracer();
     } else {
       s.strategy().emission_changed();
     }
@@ -221,13 +226,14 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   const lightsampler::PhiloxKey gather_key = path_key(frame_seed ^ kGatherStream);
   const lightsampler::PhiloxKey spatial_key = path_key(frame_seed ^ kSpatialStream);
   if (!s.sums) {
-    s.sums.emplace(State::Sums{Accumulator(pixels), {}, {}, 0, 0.0, 0, 0, 0});
+    s.sums.emplace(State::Sums{Accumulator(pixels), {}, {}, {}, 0, 0.0, 0, 0, 0});
     if (s.reuse) s.reuse->reset();
   }
   State::Sums& sums = *s.sums;
 
   std::vector<PathEstimate> pass(pixels);
   tbb::combinable<std::uint64_t> rays, queries, invalid;
+  tbb::combinable<ReuseWork> reuse_work;
   const auto start = Clock::now();
   const unsigned first = sums.passes;
   const unsigned end = first + std::min(count, std::numeric_limits<unsigned>::max() - first);
@@ -246,12 +252,12 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
       for_each_pixel(settings, cancel, [&](unsigned x, unsigned y) {
         const std::uint32_t pixel = y * settings.width + x;
         PathRandom path(key, pixel, f), random(gather_key, pixel, f);
-        s.reuse->gather(pixel, pixel_ray(s.camera, x, y, path), random, rays.local());
+        s.reuse->gather(pixel, pixel_ray(s.camera, x, y, path), random, rays.local(), reuse_work.local());
       });
       for_each_pixel(settings, cancel, [&](unsigned x, unsigned y) {
         const std::uint32_t pixel = y * settings.width + x;
         PathRandom random(spatial_key, pixel, f);
-        s.reuse->spatial(pixel, random);
+        s.reuse->spatial(pixel, random, reuse_work.local());
       });
       sums.reuse_ms.push_back(1000.0 * seconds_since(reuse_start));
     }
@@ -286,6 +292,7 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   sums.rays += rays.combine(std::plus<>());
   sums.light_queries += queries.combine(std::plus<>());
   sums.invalid_paths += invalid.combine(std::plus<>());
+  reuse_work.combine_each([&](const ReuseWork& w) { sums.reuse_work += w; });
 
   RenderResult result;
   result.width = settings.width;
@@ -307,6 +314,8 @@ RenderResult Renderer::render_more(unsigned count, const std::function<void(unsi
   result.passes = sums.passes;
   result.light_passes = sums.light_passes;
   result.reuse_ms = sums.reuse_ms;
+  result.reuse_candidates = sums.reuse_work.candidates;
+  result.reuse_targets = sums.reuse_work.targets;
   result.render_seconds = sums.seconds;
   result.interrupted = cancelled;
   result.paths = std::uint64_t(result.passes) * pixels;

@@ -100,21 +100,24 @@ std::optional<LightLiSample> Reuse::seen(const Sample& y, const ShadingPoint& at
   return s;
 }
 
-float Reuse::target(const PrimaryVertex& v, const Sample& y) const {
+float Reuse::target(const PrimaryVertex& v, const Sample& y, std::uint64_t& targets) const {
+  ++targets;
   const std::optional<LightLiSample> s = seen(y, v.at);
   if (!s) return 0.0f;
   return luminance(tracer_.unshadowed(v, *s)) / s->pdf;
 }
 
-void Reuse::gather(std::uint32_t pixel, const Ray& ray, PathRandom& random, std::uint64_t& rays) {
+void Reuse::gather(std::uint32_t pixel, const Ray& ray, PathRandom& random, std::uint64_t& rays, ReuseWork& work) {
   std::optional<PrimaryVertex>& v = vertices_[pixel];
   v = tracer_.primary_vertex(ray, rays);
+  ++work.reservoirs;
   Reservoir initial;
   initial.M = float(strategy_.candidates());
   if (!v) {
     temporal_[pixel] = initial;
     return;
   }
+  work.candidates += strategy_.candidates();
   const std::optional<Resampled<Candidate>> chosen =
       resample<Candidate>(strategy_, random, v->at, [&](const LightLiSample& s) -> std::optional<Candidate> {
         const glm::vec3 f_li = tracer_.unshadowed(*v, s);
@@ -127,7 +130,7 @@ void Reuse::gather(std::uint32_t pixel, const Ray& ray, PathRandom& random, std:
     y.punctual = s.delta;
     y.point.light = s.light;
     if (!s.delta) y.point = emitters_.light(s.light).point(s.b1, s.b2, 1.0f, 1.0f);
-    const float p = target(*v, y);
+    const float p = target(*v, y, work.targets);
     if (p > 0.0f) {
       initial.y = y;
       initial.target = p;
@@ -144,10 +147,10 @@ void Reuse::gather(std::uint32_t pixel, const Ray& ray, PathRandom& random, std:
   const std::array<Input, 2> inputs{{{&initial, &*v, initial.M},
                                      {&previous_final_[pixel], &*previous_vertices_[pixel],
                                       std::min(previous_final_[pixel].M, cap)}}};
-  temporal_[pixel] = combine(inputs, random);
+  temporal_[pixel] = combine(inputs, random, work.targets);
 }
 
-void Reuse::spatial(std::uint32_t pixel, PathRandom& random) {
+void Reuse::spatial(std::uint32_t pixel, PathRandom& random, ReuseWork& work) {
   const std::optional<PrimaryVertex>& v = vertices_[pixel];
   if (!v || options_.neighbours == 0) {
     final_[pixel] = temporal_[pixel];
@@ -170,10 +173,10 @@ void Reuse::spatial(std::uint32_t pixel, PathRandom& random) {
     // Other pixels' threads query this surface too: with its own wo, which its BSDF is prepared for.
     inputs[count++] = {&temporal_[q], &*w, temporal_[q].M};
   }
-  final_[pixel] = combine({inputs.data(), count}, random);
+  final_[pixel] = combine({inputs.data(), count}, random, work.targets);
 }
 
-Reuse::Reservoir Reuse::combine(std::span<const Input> inputs, PathRandom& random) const {
+Reuse::Reservoir Reuse::combine(std::span<const Input> inputs, PathRandom& random, std::uint64_t& targets) const {
   const PrimaryVertex& here = *inputs[0].vertex;
   Reservoir out;
   float sum = 0.0f;
@@ -181,9 +184,9 @@ Reuse::Reservoir Reuse::combine(std::span<const Input> inputs, PathRandom& rando
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const Reservoir& r = *inputs[i].reservoir;
     if (!r.y || !(r.W > 0.0f)) continue;
-    const float p = i == 0 ? r.target : target(here, *r.y);
+    const float p = i == 0 ? r.target : target(here, *r.y, targets);
     if (!(p > 0.0f)) continue;
-    const float w = weight(inputs, i, p, out.M) * p * r.W;
+    const float w = weight(inputs, i, p, out.M, targets) * p * r.W;
     if (!(w > 0.0f) || !std::isfinite(w)) continue;
     sum += w;
     if (lightsampler::uniform_float(random.words()[0]) * sum < w) {
@@ -195,16 +198,18 @@ Reuse::Reservoir Reuse::combine(std::span<const Input> inputs, PathRandom& rando
   return out;
 }
 
-float Reuse::weight(std::span<const Input> inputs, std::size_t i, float p_0, float total) const {
+float Reuse::weight(std::span<const Input> inputs, std::size_t i, float p_0, float total,
+                    std::uint64_t& targets) const {
   switch (options_.weights) {
-    case ReuseOptions::Weights::pairwise: return pairwise(inputs, i, p_0, total);
-    case ReuseOptions::Weights::balance: return balance(inputs, i);
+    case ReuseOptions::Weights::pairwise: return pairwise(inputs, i, p_0, total, targets);
+    case ReuseOptions::Weights::balance: return balance(inputs, i, targets);
     case ReuseOptions::Weights::uniform: break;
   }
   return inputs[i].M / total;
 }
 
-float Reuse::pairwise(std::span<const Input> inputs, std::size_t i, float p_0, float total) const {
+float Reuse::pairwise(std::span<const Input> inputs, std::size_t i, float p_0, float total,
+                      std::uint64_t& targets) const {
   const std::size_t n = inputs.size() - 1;
   if (n == 0) return 1.0f;
   const float own = inputs[0].M / float(n);  // the pixel's own confidence in each of its n pairs
@@ -217,16 +222,16 @@ float Reuse::pairwise(std::span<const Input> inputs, std::size_t i, float p_0, f
   if (i > 0) return pair(i, inputs[i].reservoir->target, true);
   const Sample& y = *inputs[0].reservoir->y;
   float m = 0.0f;
-  for (std::size_t j = 1; j <= n; ++j) m += pair(j, target(*inputs[j].vertex, y), false);
+  for (std::size_t j = 1; j <= n; ++j) m += pair(j, target(*inputs[j].vertex, y, targets), false);
   return m;
 }
 
-float Reuse::balance(std::span<const Input> inputs, std::size_t i) const {
+float Reuse::balance(std::span<const Input> inputs, std::size_t i, std::uint64_t& targets) const {
   // The generalized balance heuristic over the inputs' domains: M_i p_i(y) / sum_j M_j p_j(y).
   const Reservoir& r = *inputs[i].reservoir;
   float denominator = 0.0f;
   for (std::size_t j = 0; j < inputs.size(); ++j)
-    denominator += inputs[j].M * (j == i ? r.target : target(*inputs[j].vertex, *r.y));
+    denominator += inputs[j].M * (j == i ? r.target : target(*inputs[j].vertex, *r.y, targets));
   return inputs[i].M * r.target / denominator;
 }
 

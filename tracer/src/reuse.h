@@ -39,6 +39,23 @@ namespace tracer {
 /// The most neighbours a pixel's reservoir is combined with in a pass.
 constexpr unsigned kMaxNeighbours = 64;
 
+/// The streams of the reservoirs' candidates and of the choice of neighbours, apart from the paths'.
+constexpr std::uint64_t kGatherStream = 0x676174686572ull, kSpatialStream = 0x7370617469616cull;
+
+/// What the reuse did beside the paths' own work: the reservoirs it gathered (each a camera
+/// ray's first surface, shaded and kept), the candidates they weighed (each a light sample of the
+/// strategy) and its evaluations of the target at a surface (each a light point seen from it and
+/// its BSDF). `auto`'s pilot counts them at their unit costs.
+struct ReuseWork {
+  std::uint64_t reservoirs = 0, candidates = 0, targets = 0;
+  ReuseWork& operator+=(const ReuseWork& o) {
+    reservoirs += o.reservoirs;
+    candidates += o.candidates;
+    targets += o.targets;
+    return *this;
+  }
+};
+
 struct ReuseOptions {
   /// spatial: neighbours' reservoirs combined per pass; 0: no spatial reuse. Eight within six
   /// pixels gain as much as `ris` with 64 candidates on lights whose texels decide
@@ -75,10 +92,11 @@ class Reuse {
   void reset();
   /// Starts a pass: this pass's reservoirs become the pass before's.
   void begin_pass();
-  /// Step 1 and 2 for `pixel`, whose camera ray is `ray`. Adds the rays it traces to `rays`.
-  void gather(std::uint32_t pixel, const Ray& ray, PathRandom& random, std::uint64_t& rays);
-  /// Step 3 for `pixel`, once every pixel gathered.
-  void spatial(std::uint32_t pixel, PathRandom& random);
+  /// Step 1 and 2 for `pixel`, whose camera ray is `ray`. Adds the rays it traces to `rays`, and
+  /// its other work to `work`.
+  void gather(std::uint32_t pixel, const Ray& ray, PathRandom& random, std::uint64_t& rays, ReuseWork& work);
+  /// Step 3 for `pixel`, once every pixel gathered; adds its work to `work`.
+  void spatial(std::uint32_t pixel, PathRandom& random, ReuseWork& work);
   /// What `pixel`'s path starts from (PathTracer::radiance's `first`): its camera ray's hit, and
   /// the light sample that lights it, none where the reservoir holds nothing.
   PathTracer::FirstSurface first_surface(std::uint32_t pixel) const;
@@ -97,16 +115,17 @@ class Reuse {
 
  private:
   struct Input;
-  Reservoir combine(std::span<const Input> inputs, PathRandom& random) const;
+  // Each adds the targets it evaluates to `targets`.
+  Reservoir combine(std::span<const Input> inputs, PathRandom& random, std::uint64_t& targets) const;
   /// Input i's MIS weight for its own sample, given p_0 of it (the target at inputs[0]'s surface)
   /// and the inputs' total M.
-  float weight(std::span<const Input> inputs, std::size_t i, float p_0, float total) const;
-  float balance(std::span<const Input> inputs, std::size_t i) const;
-  float pairwise(std::span<const Input> inputs, std::size_t i, float p_0, float total) const;
+  float weight(std::span<const Input> inputs, std::size_t i, float p_0, float total, std::uint64_t& targets) const;
+  float balance(std::span<const Input> inputs, std::size_t i, std::uint64_t& targets) const;
+  float pairwise(std::span<const Input> inputs, std::size_t i, float p_0, float total, std::uint64_t& targets) const;
   /// `y` seen from `at`, its densities those of a unit area density (pdf = 1 / G); none where
   /// it is not seen.
   std::optional<LightLiSample> seen(const Sample& y, const ShadingPoint& at) const;
-  float target(const PrimaryVertex& v, const Sample& y) const;
+  float target(const PrimaryVertex& v, const Sample& y, std::uint64_t& targets) const;
 
   const PathTracer& tracer_;
   const Emitters& emitters_;

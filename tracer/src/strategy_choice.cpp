@@ -4,12 +4,14 @@
 // pilot"): drawing by the texels (trs) pays where the emission varies within the lights,
 // weighing candidates by their contribution (ris) where lights face many ways, and the cheapest
 // draw (power) where neither gains enough for its cost. A pilot renders a few passes of each
-// over a grid of the image's pixels, and the cheapest of those whose noise times work per pass
-// is within kCheaperMargin of the least renders.
+// over a grid of the image's pixels, and `restir` and `ris` a few over blocks of neighbouring
+// pixels, whose reuse restir needs; the cheapest of those whose noise times work per pass is
+// within kCheaperMargin of the least renders.
 //
 // The work is counted, not timed, so that the choice is the same on every run: rays traced,
-// light samples weighed (each a draw and a BSDF evaluation) and the light sampler's tries, at
-// unit costs in rays measured on this renderer (tools/pilot_costs.py).
+// light samples weighed (each a draw and a BSDF evaluation), restir's evaluations of its
+// target and the light sampler's tries, at unit costs in rays measured on this renderer
+// (tools/pilot_costs.py).
 
 #include "strategy_choice.h"
 
@@ -26,6 +28,7 @@
 
 #include "luminance.h"
 #include "pixel_ray.h"
+#include "reuse.h"
 #include "scene_io/relmse.h"
 #include "tracer/path_random.h"
 #include "tracer/path_tracer.h"
@@ -58,6 +61,17 @@ constexpr std::uint64_t kPilotSeed = 0x70696c6f74ull;
 constexpr double kPilotLightSampleCost[] = {1.53, 1.15, 0.56};
 static_assert(std::size(kPilotLightSampleCost) == std::size(kPilotStrategies));
 constexpr double kPilotSamplerTryCost = 0.17;
+/// restir's reuse, in rays: a reservoir gathered (its camera ray's first surface shaded and kept,
+/// beside the ray itself and its candidates, which count as such), and an evaluation of its
+/// target at a surface (a light point seen from it and its BSDF). Fitted by
+/// tools/pilot_costs.py (--light-sample-costs as above) to restir's whole pass over the shipped
+/// scenes and real assets: within 11% of it on most, 21 and 23% under on two, 30% over on one.
+constexpr double kPilotReservoirCost = 1.34, kPilotTargetCost = 0.67;
+
+/// restir's blocks: kPilotBlocks squares of kPilotBlockSide pixels, drawn where the grid's first
+/// passes saw noise (block_centres). Twice restir's default radius across, so that most of a
+/// pixel's neighbours are in its block.
+constexpr unsigned kPilotBlockSide = 16, kPilotBlocks = 8;
 
 double texel_gain(Emitters& emitters) {
   lightsampler::Frame frame;
@@ -77,49 +91,118 @@ double texel_gain(Emitters& emitters) {
   return count > 0 ? sum / double(count) : 1.0;
 }
 
-/// The pilot's pixels: every `stride`-th of each row and column, from the middle of the first
-/// stride (or the last pixel, where the image is narrower than half a stride).
-struct PilotGrid {
-  unsigned stride, x0, y0, columns, rows;
+/// Pixels of the image the pilot renders, row by row of a `width` x `height` image of their own,
+/// in which restir's reuse finds their neighbours.
+struct PilotPixels {
+  unsigned width = 0, height = 0;
+  unsigned block_side = 0;  ///< restir's blocks': `block_side` square each, side by side; 0: a grid
+  std::vector<unsigned> x, y;  ///< each one's place in the render's image
 
-  /// About `pixels` of a w x h image.
-  PilotGrid(unsigned w, unsigned h, double pixels)
-      : stride(unsigned(std::max(1.0, std::ceil(std::sqrt(double(w) * h / pixels))))),
-        x0(std::min(stride / 2, w - 1)),
-        y0(std::min(stride / 2, h - 1)),
-        columns((w - x0 + stride - 1) / stride),
-        rows((h - y0 + stride - 1) / stride) {}
-  std::size_t size() const { return std::size_t(columns) * rows; }
-  unsigned x(std::size_t i) const { return x0 + unsigned(i % columns) * stride; }
-  unsigned y(std::size_t i) const { return y0 + unsigned(i / columns) * stride; }
+  /// Per pixel, the weight of its noise in the pilot's mean (empty: 1 each): restir's blocks are
+  /// drawn where the grid saw noise, and weighted back (block_centres).
+  std::vector<double> importance;
+
+  std::size_t size() const { return x.size(); }
+  void add(unsigned px, unsigned py) {
+    x.push_back(px);
+    y.push_back(py);
+  }
 };
+
+/// About `pixels` of a w x h image: every `stride`-th of each row and column, from the middle of
+/// the first stride (or the last pixel, where the image is narrower than half a stride).
+PilotPixels pilot_grid(unsigned w, unsigned h, double pixels) {
+  const unsigned stride = unsigned(std::max(1.0, std::ceil(std::sqrt(double(w) * h / pixels))));
+  const unsigned x0 = std::min(stride / 2, w - 1), y0 = std::min(stride / 2, h - 1);
+  PilotPixels grid;
+  grid.width = (w - x0 + stride - 1) / stride;
+  grid.height = (h - y0 + stride - 1) / stride;
+  for (unsigned j = 0; j < grid.height; ++j)
+    for (unsigned i = 0; i < grid.width; ++i) grid.add(x0 + i * stride, y0 + j * stride);
+  return grid;
+}
+
+/// restir's blocks, `side` pixels square, centred on `centres` and clamped into the w x h image,
+/// side by side in the pilot's own image. A pixel's reuse finds its neighbours as in the render
+/// but at its block's edges, where it meets another block's pixels and mostly turns them down as
+/// another surface: if anything, the pilot sees restir a little noisier than it renders. Each
+/// pixel's importance is its block's (BlockCentre).
+struct BlockCentre {
+  unsigned x, y;
+  double importance;  ///< 1 / (the chance it was drawn times the grid's pixels)
+};
+PilotPixels pilot_blocks(unsigned w, unsigned h, unsigned side, const std::vector<BlockCentre>& centres) {
+  PilotPixels blocks;
+  blocks.width = side * unsigned(centres.size());
+  blocks.height = side;
+  blocks.block_side = side;
+  const auto start = [side](unsigned centre, unsigned extent) { return std::min(centre - std::min(centre, side / 2), extent - side); };
+  for (unsigned py = 0; py < side; ++py)
+    for (const BlockCentre& c : centres)
+      for (unsigned px = 0; px < side; ++px) {
+        blocks.add(start(c.x, w) + px, start(c.y, h) + py);
+        blocks.importance.push_back(c.importance);
+      }
+  return blocks;
+}
 
 /// One strategy's pilot: its paths' luminances, pixel by pixel (kMaxPilotPasses a pixel, in pass
 /// order), the part of each the light strategy makes, and the work counted.
 struct PilotRun {
+  const PilotPixels* pixels = nullptr;
   std::unique_ptr<LightStrategy> strategy;
-  double lights = 0.0;  ///< the point lights of its passes, in proportion to the grid's pixels
+  double lights = 0.0;  ///< the point lights of its passes, in proportion to its pixels
   std::optional<PathTracer> tracer;
+  std::optional<Reuse> reuse;  ///< restir's
   std::vector<double> luminance;
   /// Without the emission the camera rays met, whose noise is the same for every strategy: it
   /// would hide what they differ by where emitters fill the image.
   std::vector<double> lit;
-  std::uint64_t rays = 0, light_queries = 0, sampler_tries = 0;
+  /// Per pixel, its work over the passes: kept apart so that the blocks' pixels can be weighted
+  /// back (PilotPixels::importance), and summed in one order, the same on every run.
+  struct Work {
+    std::uint64_t rays = 0, light_queries = 0;
+    ReuseWork reuse;
+  };
+  std::vector<Work> work;
+  std::uint64_t sampler_tries = 0;
   double light_sample_cost = 0.0;  ///< in rays (kPilotLightSampleCost)
 };
 
-/// Renders passes [first, last) of `run`'s strategy over the grid.
-void run_passes(PilotRun& run, const PinholeCamera& camera, const PilotGrid& grid, unsigned width, unsigned first,
-                unsigned last) {
+/// Gathers and combines restir's reservoirs over `run`'s pixels, for pass `pass`.
+void reuse_pass(PilotRun& run, const PinholeCamera& camera, unsigned width, unsigned pass) {
+  const PilotPixels& pixels = *run.pixels;
+  const lightsampler::PhiloxKey key = path_key(kPilotSeed), gather_key = path_key(kPilotSeed ^ kGatherStream),
+                                spatial_key = path_key(kPilotSeed ^ kSpatialStream);
+  run.reuse->begin_pass();
+  tbb::parallel_for(std::size_t(0), pixels.size(), [&](std::size_t i) {
+    const unsigned x = pixels.x[i], y = pixels.y[i];
+    PathRandom path(key, y * width + x, pass), random(gather_key, y * width + x, pass);
+    PilotRun::Work& work = run.work[i];
+    run.reuse->gather(std::uint32_t(i), pixel_ray(camera, x, y, path), random, work.rays, work.reuse);
+  });
+  tbb::parallel_for(std::size_t(0), pixels.size(), [&](std::size_t i) {
+    PathRandom random(spatial_key, pixels.y[i] * width + pixels.x[i], pass);
+    run.reuse->spatial(std::uint32_t(i), random, run.work[i].reuse);
+  });
+}
+
+/// Renders passes [first, last) of `run`'s strategy over its pixels.
+void run_passes(PilotRun& run, const PinholeCamera& camera, unsigned width, unsigned first, unsigned last) {
+  const PilotPixels& pixels = *run.pixels;
   const lightsampler::PhiloxKey key = path_key(kPilotSeed);
-  tbb::combinable<std::uint64_t> rays, queries;
   for (unsigned pass = first; pass < last; ++pass) {
     run.strategy->begin_pass(pass_seed(kPilotSeed, pass));
-    tbb::parallel_for(std::size_t(0), grid.size(), [&](std::size_t i) {
-      const unsigned x = grid.x(i), y = grid.y(i);
+    if (run.reuse) reuse_pass(run, camera, width, pass);
+    tbb::parallel_for(std::size_t(0), pixels.size(), [&](std::size_t i) {
+      const unsigned x = pixels.x[i], y = pixels.y[i];
       PathRandom random(key, y * width + x, pass);
-      const PathEstimate e = run.tracer->radiance(pixel_ray(camera, x, y, random), random, rays.local());
-      queries.local() += e.light_queries;
+      std::optional<PathTracer::FirstSurface> reused;
+      if (run.reuse) reused = run.reuse->first_surface(std::uint32_t(i));
+      PilotRun::Work& work = run.work[i];
+      const PathEstimate e =
+          run.tracer->radiance(pixel_ray(camera, x, y, random), random, work.rays, reused ? &*reused : nullptr);
+      work.light_queries += e.light_queries;
       const double l = luminance(e.radiance), seen = luminance(e.seen_emission);
       const bool finite = std::isfinite(l) && std::isfinite(seen);  // else black, as the renderer counts it
       run.luminance[i * kMaxPilotPasses + pass] = finite ? l : 0.0;
@@ -127,8 +210,6 @@ void run_passes(PilotRun& run, const PinholeCamera& camera, const PilotGrid& gri
     });
     run.sampler_tries += run.strategy->last_pass().candidates;
   }
-  run.rays += rays.combine(std::plus<>());
-  run.light_queries += queries.combine(std::plus<>());
 }
 
 /// Per pilot pixel, the weight of its variance in a pass's relMSE: 1 / (r^2 + guard), r the
@@ -145,6 +226,7 @@ std::vector<double> noise_weights(const std::vector<PilotRun>& runs, std::size_t
     std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
     const double median = values[values.size() / 2];
     weights[i] = 1.0 / (median * median + trs::kRelmseGuard);
+    if (!runs.front().pixels->importance.empty()) weights[i] *= runs.front().pixels->importance[i];
   }
   return weights;
 }
@@ -162,6 +244,29 @@ std::vector<double> pixel_noise(const PilotRun& run, const std::vector<double>& 
     noise[i] = weights[i] * std::max(0.0, (squares - s * s / passes) / (passes - 1.0));
   }
   return noise;
+}
+
+/// Where restir's blocks go: kPilotBlocks of the grid's pixels, drawn (systematically, so the
+/// same every run) in proportion to an even mixture of `run`'s noise there over its first
+/// `passes` passes and a uniform share, so that the blocks go where the noise is but any pixel
+/// may get one; each weighted back by the inverse of its chance, which keeps the blocks' mean an
+/// estimate of the image's.
+std::vector<BlockCentre> block_centres(const std::vector<PilotRun>& runs, const PilotRun& run, unsigned passes) {
+  const PilotPixels& grid = *run.pixels;
+  const std::vector<double> noise = pixel_noise(run, noise_weights(runs, grid.size(), passes), passes);
+  const double total = std::accumulate(noise.begin(), noise.end(), 0.0), n = double(grid.size());
+  std::vector<double> chance(grid.size());
+  for (std::size_t i = 0; i < grid.size(); ++i)
+    chance[i] = total > 0.0 ? 0.5 * noise[i] / total + 0.5 / n : 1.0 / n;
+  std::vector<BlockCentre> centres;
+  double cumulative = 0.0;
+  std::size_t i = 0;
+  for (unsigned k = 0; k < kPilotBlocks; ++k) {
+    const double u = (k + 0.5) / kPilotBlocks;
+    while (i + 1 < grid.size() && cumulative + chance[i] <= u) cumulative += chance[i++];
+    centres.push_back({grid.x[i], grid.y[i], 1.0 / (chance[i] * n)});
+  }
+  return centres;
 }
 
 /// The standard error, over the pilot's pixels, of the log of the ratio of the means of `a` and
@@ -184,35 +289,66 @@ double log_ratio_error(const std::vector<double>& a, const std::vector<double>& 
 
 /// Fills `m`'s cost from its run: the work of a pass over `pixels`, the light sampler's tries
 /// scaled from the pilot's lights to the render's.
-void measure_cost(const PilotRun& run, unsigned passes, std::size_t grid_pixels, double lights_scale,
-                  std::size_t pixels, PilotMeasure& m) {
-  const double paths = double(grid_pixels) * passes;
-  m.rays_per_path = double(run.rays) / paths;
-  m.light_samples_per_path = double(run.light_queries) * run.strategy->candidates() / paths;
+void measure_cost(const PilotRun& run, unsigned passes, double lights_scale, std::size_t pixels, PilotMeasure& m) {
+  const std::vector<double>& importance = run.pixels->importance;
+  double paths = 0.0, rays = 0.0, samples = 0.0, reservoirs = 0.0, targets = 0.0;
+  for (std::size_t i = 0; i < run.work.size(); ++i) {
+    const PilotRun::Work& w = run.work[i];
+    const double weight = importance.empty() ? 1.0 : importance[i];
+    paths += weight * passes;
+    rays += weight * double(w.rays);
+    samples += weight * (double(w.light_queries) * run.strategy->candidates() + double(w.reuse.candidates));
+    reservoirs += weight * double(w.reuse.reservoirs);
+    targets += weight * double(w.reuse.targets);
+  }
+  m.rays_per_path = rays / paths;
+  m.light_samples_per_path = samples / paths;
+  m.targets_per_path = targets / paths;
   m.sampler_tries_per_pass = double(run.sampler_tries) * lights_scale / passes;
-  m.cost = double(pixels) * (m.rays_per_path + run.light_sample_cost * m.light_samples_per_path) +
+  m.cost = double(pixels) * (m.rays_per_path + run.light_sample_cost * m.light_samples_per_path +
+                             kPilotReservoirCost * reservoirs / paths + kPilotTargetCost * m.targets_per_path) +
            kPilotSamplerTryCost * m.sampler_tries_per_pass;
 }
+
+/// A floor on the noise keeps the efficiency finite where a strategy's pilot saw none (a black
+/// image): the cheapest then wins.
+constexpr double kNoiseFloor = 1e-30;
 
 /// Fills each strategy's measure from the first `passes` passes of its run, its cost for a pass
 /// of `render_lights` point lights over `pixels`; returns each one's noise, pixel by pixel.
 std::vector<std::vector<double>> measure_pilot(const std::vector<PilotRun>& runs, unsigned passes,
                                                double render_lights, std::size_t pixels,
                                                std::vector<PilotMeasure>& pilot) {
-  // A floor on the noise keeps the efficiency finite where a strategy's pilot saw none (a black
-  // image): the cheapest then wins.
-  constexpr double kNoiseFloor = 1e-30;
-  const std::size_t grid_pixels = runs.front().lit.size() / kMaxPilotPasses;
-  const std::vector<double> weights = noise_weights(runs, grid_pixels, passes);
+  const std::size_t run_pixels = runs.front().lit.size() / kMaxPilotPasses;
+  const std::vector<double> weights = noise_weights(runs, run_pixels, passes);
   std::vector<std::vector<double>> noise;
   for (std::size_t s = 0; s < runs.size(); ++s) {
     PilotMeasure& m = pilot[s];
-    measure_cost(runs[s], passes, grid_pixels, render_lights / runs[s].lights, pixels, m);
+    measure_cost(runs[s], passes, render_lights / runs[s].lights, pixels, m);
     noise.push_back(pixel_noise(runs[s], weights, passes));
-    m.relative_variance = std::accumulate(noise[s].begin(), noise[s].end(), 0.0) / double(grid_pixels);
+    m.relative_variance = std::accumulate(noise[s].begin(), noise[s].end(), 0.0) / double(run_pixels);
     m.efficiency = 1.0 / (std::max(m.relative_variance, kNoiseFloor) * m.cost);
   }
   return noise;
+}
+
+/// Each block's sum of `noise`, a pixel's each, on `blocks`.
+std::vector<double> block_sums(const std::vector<double>& noise, const PilotPixels& blocks) {
+  std::vector<double> sums(blocks.width / blocks.block_side, 0.0);
+  for (std::size_t i = 0; i < noise.size(); ++i) sums[(i % blocks.width) / blocks.block_side] += noise[i];
+  return sums;
+}
+
+/// kPilotReuse's measure: its noise over kPilotReused's on the blocks, `pair` (theirs in that
+/// order), times kPilotReused's on the grid, `reused`; its own cost. The blocks are few, and the
+/// ratio varies from one to the next: it is taken `error` (the standard error of its log) above
+/// its estimate, so that restir, the dearest, renders where the pilot knows it leads.
+PilotMeasure reuse_measure(const PilotMeasure& reused, const std::vector<PilotMeasure>& pair, double error) {
+  PilotMeasure m = pair[1];
+  m.relative_variance = reused.relative_variance * std::exp(error);
+  if (pair[0].relative_variance > 0.0) m.relative_variance *= pair[1].relative_variance / pair[0].relative_variance;
+  m.efficiency = 1.0 / (std::max(m.relative_variance, kNoiseFloor) * m.cost);
+  return m;
 }
 
 /// The most efficient strategy; the first, in kPilotStrategies' order (the cheapest first), on a tie.
@@ -234,8 +370,22 @@ std::size_t cheapest_close_to(const std::vector<PilotMeasure>& pilot, std::size_
 }
 
 /// Fills each strategy's relative_error: that of the ratio of its noise to the leader's, `best`.
-void measure_errors(std::vector<PilotMeasure>& pilot, const std::vector<std::vector<double>>& noise, std::size_t best) {
-  for (std::size_t s = 0; s < pilot.size(); ++s) pilot[s].relative_error = log_ratio_error(noise[s], noise[best]);
+/// `noise` is the grid's strategies', pixel by pixel; kPilotReuse's measure, where the pilot
+/// weighed it, follows theirs, known through kPilotReused's: its error against a grid strategy
+/// adds that of its ratio to kPilotReused's on the blocks, `reuse_error`.
+void measure_errors(std::vector<PilotMeasure>& pilot, const std::vector<std::vector<double>>& noise, std::size_t best,
+                    double reuse_error) {
+  const std::size_t grid = noise.size();
+  for (std::size_t s = 0; s < pilot.size(); ++s) {
+    if (s < grid && best < grid) {
+      pilot[s].relative_error = log_ratio_error(noise[s], noise[best]);
+    } else if (s != best) {
+      const std::size_t other = s < grid ? s : best;
+      pilot[s].relative_error = std::hypot(log_ratio_error(noise[other], noise[kPilotReused]), reuse_error);
+    } else {
+      pilot[s].relative_error = 0.0;
+    }
+  }
 }
 
 /// Whether no other strategy can be more than kPilotIndifference more efficient than the leader,
@@ -250,13 +400,16 @@ bool decided(const std::vector<PilotMeasure>& pilot, std::size_t best) {
 }
 
 std::string pilot_reason(const std::vector<PilotMeasure>& pilot, std::size_t best, std::size_t chosen,
-                         const PilotGrid& grid, unsigned passes, const char* stop) {
-  char text[640];
+                         const PilotPixels& grid, const PilotPixels& blocks, unsigned passes, const char* stop) {
+  char text[768];
   const PilotMeasure& b = pilot[best];
-  int n = std::snprintf(text, sizeof text,
-                        "a pilot of %u passes%s on %zu pixels: %s is the most efficient (relative variance %.3g a "
-                        "pass, cost %.3g rays a pass)",
-                        passes, stop, grid.size(), b.strategy.c_str(), b.relative_variance, b.cost);
+  int n = std::snprintf(text, sizeof text, "a pilot of %u passes%s on %zu pixels", passes, stop, grid.size());
+  if (blocks.size() > 0 && n > 0 && std::size_t(n) < sizeof text)
+    n += std::snprintf(text + n, sizeof text - n, " (%s against %s on %zu more, in blocks)", kPilotReuse,
+                       kPilotStrategies[kPilotReused], blocks.size());
+  if (n > 0 && std::size_t(n) < sizeof text)
+    n += std::snprintf(text + n, sizeof text - n, ": %s is the most efficient (relative variance %.3g a pass, cost %.3g rays a pass)",
+                       b.strategy.c_str(), b.relative_variance, b.cost);
   for (const PilotMeasure& m : pilot)
     if (&m != &b && n > 0 && std::size_t(n) < sizeof text)
       n += std::snprintf(text + n, sizeof text - n, "; %s %.2fx as efficient", m.strategy.c_str(),
@@ -276,7 +429,7 @@ std::size_t strategy_to_render(const std::vector<PilotMeasure>& pilot) {
 bool pilot_decided(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise) {
   if (pilot.empty()) return true;
   const std::size_t best = leader(pilot);
-  measure_errors(pilot, noise, best);
+  measure_errors(pilot, noise, best, 0.0);
   return decided(pilot, best);
 }
 
@@ -305,48 +458,81 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
   if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
   const std::size_t pixels = std::size_t(settings.width) * settings.height;
   const std::size_t strategies = std::size(kPilotStrategies);
+  // Without scattering, restir's reservoirs light nothing: it is ris.
+  const unsigned side = std::min({kPilotBlockSide, settings.width, settings.height});
+  const std::size_t block_runs = settings.max_depth > 0 ? 2 : 0;
+  PilotPixels blocks;  // placed after the grid's first round
   // The pilot's paths: at most kPilotShare of the render's, but kMinPilotPasses on at least
-  // kMinPilotPixels.
+  // kMinPilotPixels and the blocks.
   const double budget = kPilotShare * double(settings.spp) * double(pixels);
-  const PilotGrid grid(settings.width, settings.height,
-                       std::clamp(budget / double(strategies * kMinPilotPasses), kMinPilotPixels, kPilotPixels));
-  const auto within_budget = [&](unsigned passes) { return double(passes * strategies * grid.size()) <= budget; };
-  // A pass's point lights in proportion to the pilot's pixels: a connection picks one light of
-  // the set, so the noise per path is the same (renderer.h, kAutoLightsPerQuery).
-  const double lights_share = double(grid.size()) / double(pixels);
-  std::vector<PilotRun> runs(strategies);
-  for (std::size_t s = 0; s < runs.size(); ++s) {
+  const double block_paths = double(block_runs * kPilotBlocks * side * side);
+  const PilotPixels grid =
+      pilot_grid(settings.width, settings.height,
+                 std::clamp((budget / kMinPilotPasses - block_paths) / double(strategies), kMinPilotPixels, kPilotPixels));
+  const auto within_budget = [&](unsigned passes) {
+    return passes * (double(strategies * grid.size()) + block_paths) <= budget;
+  };
+  // A strategy's pilot over `on`, with point lights in proportion to its pixels: a connection
+  // picks one light of the set, so the noise per path is the same (renderer.h, kAutoLightsPerQuery).
+  const auto make_run = [&](PilotRun& run, const char* kind, const PilotPixels& on, double light_sample_cost) {
     StrategyOptions o = options;
-    o.kind = kPilotStrategies[s];
-    o.lights = std::max(1.0, std::round(options.lights * lights_share));
-    runs[s].lights = o.lights;
-    runs[s].light_sample_cost = kPilotLightSampleCost[s];
-    runs[s].strategy = make_light_strategy(emitters, o);
-    runs[s].tracer.emplace(scene, geometry, emitters, *runs[s].strategy, settings.max_depth);
-    runs[s].luminance.resize(grid.size() * kMaxPilotPasses);
-    runs[s].lit.resize(grid.size() * kMaxPilotPasses);
-    choice.pilot.push_back({o.kind});
+    o.kind = kind;
+    o.lights = std::max(1.0, std::round(options.lights * double(on.size()) / double(pixels)));
+    run.pixels = &on;
+    run.lights = o.lights;
+    run.light_sample_cost = light_sample_cost;
+    run.strategy = make_light_strategy(emitters, o);
+    run.tracer.emplace(scene, geometry, emitters, *run.strategy, settings.max_depth);
+    if (const ReuseOptions* reuse = reuse_of(*run.strategy))
+      run.reuse.emplace(*run.tracer, emitters, *run.strategy, *reuse, on.width, on.height);
+    run.work.resize(on.size());
+    run.luminance.resize(on.size() * kMaxPilotPasses);
+    run.lit.resize(on.size() * kMaxPilotPasses);
+  };
+  std::vector<PilotRun> runs(strategies), paired;
+  for (std::size_t s = 0; s < strategies; ++s) {
+    make_run(runs[s], kPilotStrategies[s], grid, kPilotLightSampleCost[s]);
+    choice.pilot.push_back({kPilotStrategies[s]});
   }
+  std::vector<PilotMeasure> pair;
   std::size_t best = 0;
   unsigned passes = 0;
   bool knew = false;  // whether it stopped because no other strategy can be far ahead
   while (passes < kMaxPilotPasses) {
-    for (PilotRun& run : runs) run_passes(run, camera, grid, settings.width, passes, passes + kPilotRoundPasses);
+    for (PilotRun& run : runs) run_passes(run, camera, settings.width, passes, passes + kPilotRoundPasses);
+    if (block_runs > 0 && paired.empty()) {
+      blocks = pilot_blocks(settings.width, settings.height, side,
+                            block_centres(runs, runs[kPilotReused], passes + kPilotRoundPasses));
+      paired.resize(block_runs);
+      make_run(paired[0], kPilotStrategies[kPilotReused], blocks, kPilotLightSampleCost[kPilotReused]);
+      make_run(paired[1], kPilotReuse, blocks, kPilotLightSampleCost[kPilotReused]);
+      pair = {{kPilotStrategies[kPilotReused]}, {kPilotReuse}};
+    }
+    for (PilotRun& run : paired) run_passes(run, camera, settings.width, passes, passes + kPilotRoundPasses);
     passes += kPilotRoundPasses;
     if (passes < kMinPilotPasses) continue;
+    choice.pilot.resize(strategies);
     const std::vector<std::vector<double>> noise = measure_pilot(runs, passes, options.lights, pixels, choice.pilot);
+    double reuse_error = 0.0;
+    if (block_runs > 0) {
+      const std::vector<std::vector<double>> pair_noise = measure_pilot(paired, passes, options.lights, pixels, pair);
+      // Over the blocks, not their pixels: a block's pixels share its surface and lights.
+      reuse_error = log_ratio_error(block_sums(pair_noise[1], blocks), block_sums(pair_noise[0], blocks));
+      choice.pilot.push_back(reuse_measure(choice.pilot[kPilotReused], pair, reuse_error));
+    }
     best = leader(choice.pilot);
-    measure_errors(choice.pilot, noise, best);
+    measure_errors(choice.pilot, noise, best, reuse_error);
     knew = decided(choice.pilot, best);
     if (knew || !within_budget(passes + kPilotRoundPasses)) break;
   }
   const std::size_t rendering = cheapest_close_to(choice.pilot, best);
   choice.pilot_passes = passes;
   choice.pilot_pixels = grid.size();
+  choice.pilot_block_pixels = blocks.size();
   choice.most_efficient = choice.pilot[best].strategy;
   choice.options.kind = choice.pilot[rendering].strategy;
   const char* stop = knew ? "" : passes == kMaxPilotPasses ? " (its most)" : " (its share of the render)";
-  choice.reason = pilot_reason(choice.pilot, best, rendering, grid, passes, stop);
+  choice.reason = pilot_reason(choice.pilot, best, rendering, grid, blocks, passes, stop);
   chosen.strategy = make_light_strategy(emitters, choice.options);  // with the render's lights
   chosen.pilot_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return chosen;

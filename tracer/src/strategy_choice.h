@@ -22,8 +22,9 @@ struct ChosenStrategy {
 };
 
 /// The strategy settings.strategy names, made. For `auto`, each of kPilotStrategies renders a
-/// few pilot passes over a grid of the image's pixels, and the one of least relative variance
-/// times cost per pass renders. The pilot's seeds are its own: every seed of a scene renders with
+/// few pilot passes over a grid of the image's pixels, kPilotReuse and kPilotReused the same
+/// passes over blocks of neighbouring pixels, and the cheapest within kCheaperMargin of the least
+/// relative variance times cost per pass renders. The pilot's seeds are its own: every seed of a scene renders with
 /// the same strategy, and the pilot's paths stay out of the image.
 ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emitters& emitters,
                                const PinholeCamera& camera, const RenderSettings& settings);

@@ -156,14 +156,19 @@ struct PilotMeasure {
   double cost = 0.0;
   double efficiency = 0.0;  ///< 1 / (relative_variance * cost)
   double rays_per_path = 0.0;
-  double light_samples_per_path = 0.0;  ///< next-event queries times the strategy's candidates
+  double light_samples_per_path = 0.0;  ///< next-event queries times the strategy's candidates, and restir's reuse's
+  double targets_per_path = 0.0;  ///< restir: its reuse's evaluations of the target at a surface
   double sampler_tries_per_pass = 0.0;  ///< candidates the light sampler's rejection loops tried
 };
 
-/// The strategies `auto`'s pilot weighs: between them the most efficient at equal time on every
-/// scene measured but the damaged helmet, where `restir` is (docs/noise.md, "The default chooses
-/// by a pilot"). restir's reuse draws on neighbouring pixels, which a grid of pilot pixels lacks.
+/// The strategies `auto`'s pilot weighs over a grid of pixels: between them the most efficient at
+/// equal time on every scene measured but the damaged helmet, where `restir` is (docs/noise.md,
+/// "The default chooses by a pilot"). restir's reuse draws on neighbouring pixels, which a grid
+/// lacks: the pilot weighs it against `ris` on blocks of neighbouring pixels (kPilotReuse).
 inline constexpr const char* kPilotStrategies[] = {"power", "trs", "ris"};
+/// The strategy weighed on blocks, against the one of kPilotStrategies it reuses the samples of.
+inline constexpr const char* kPilotReuse = "restir";
+inline constexpr std::size_t kPilotReused = 2;  // ris
 
 /// The pilot's passes of each strategy: rounds of kPilotRoundPasses, at least kMinPilotPasses and
 /// at most kMaxPilotPasses. It stops once no other strategy can be more than kPilotIndifference
@@ -211,6 +216,9 @@ struct StrategyChoice {
   std::string reason;  ///< auto: the choice in a sentence; empty for the others
   unsigned pilot_passes = 0;  ///< auto: the passes of each strategy the pilot rendered before it chose
   std::size_t pilot_pixels = 0;  ///< auto: the pixels of the pilot's grid
+  /// auto: the pixels of its blocks, on which it weighs kPilotReuse against kPilotReused (0 where
+  /// paths do not scatter: restir is ris then, and the pilot does not weigh it)
+  std::size_t pilot_block_pixels = 0;
   /// auto: the pilot's most efficient strategy; the cheapest within a margin of it renders
   /// (options.kind).
   std::string most_efficient;

@@ -77,6 +77,9 @@ struct RenderResult {
   /// restir: the reuse's time per pass, milliseconds (its reservoirs gathered, temporal and
   /// spatial); empty for the other strategies.
   std::vector<double> reuse_ms;
+  /// restir: the candidates its reservoirs weighed and its evaluations of the target at a surface,
+  /// over all passes (the light samples its reuse adds to light_samples' and the rays' work).
+  std::uint64_t reuse_candidates = 0, reuse_targets = 0;
   StrategySetup light_structure;      ///< what the strategy built over the lights (zeros: nothing)
   double setup_seconds = 0.0;         ///< scene acceleration structure, emitters, strategy
   SetupTimes setup;                   ///< setup_seconds by part
