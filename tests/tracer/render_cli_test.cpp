@@ -401,10 +401,10 @@ TEST_F(RenderCliTest, SetUpByPartAndTheStrategyAutoChose) {
     const nlohmann::json& choice = stats["strategy_choice"];
     EXPECT_EQ(choice["asked"], "auto");
     EXPECT_EQ(stats["settings"]["strategy"], choice["used"]);
-    ASSERT_EQ(choice["pilot"].size(), 4u);  // power, trs and ris on a grid; restir against ris on blocks
-    EXPECT_EQ(choice["pilot"][3]["strategy"], "restir");
-    if (scene == kScene) EXPECT_GT(choice["pilot"][3]["targets_per_path"].get<double>(), 0.0);  // the flat quad lights nothing
-    EXPECT_GT(choice["pilot_block_pixels"].get<unsigned>(), 0u);
+    // power, trs and ris on a grid; restir against ris on blocks where the render pays for them,
+    // which this one, of 16 x 9 pixels, does not.
+    EXPECT_EQ(choice["pilot_block_pixels"].get<unsigned>(), 0u);
+    ASSERT_EQ(choice["pilot"].size(), 3u);
     std::string best;
     double most = 0.0;
     for (const nlohmann::json& m : choice["pilot"]) {

@@ -169,10 +169,13 @@ TEST(StrategyChoice, OrientationDecides) {
 
 // restir is weighed on blocks of neighbouring pixels, against ris on the same pixels: where
 // lights face many ways and only direct light is rendered, its reuse lowers ris's noise, at the
-// cost of its target evaluations. Without scattering its reservoirs light nothing, and the pilot
-// does not weigh it.
+// cost of its target evaluations. Without scattering its reservoirs light nothing, and a render
+// too short to pay for the blocks does not weigh it either.
 TEST(StrategyChoice, ReuseIsWeighedOnBlocks) {
-  const StrategyChoice choice = render(facing_away(), settings()).strategy_choice;
+  RenderSettings long_render = settings();
+  long_render.spp = 1024;  // the blocks paid for, on an image of 32 x 24
+  const std::atomic<bool> cancel{true};  // the choice alone: no pass
+  const StrategyChoice choice = Renderer(facing_away(), long_render).render({}, cancel).strategy_choice;
   EXPECT_GT(choice.pilot_block_pixels, 0u);
   const PilotMeasure &ris = measure_of(choice, "ris"), &restir = measure_of(choice, "restir");
   EXPECT_LT(restir.relative_variance, 0.8 * ris.relative_variance) << efficiencies(choice);
@@ -180,11 +183,13 @@ TEST(StrategyChoice, ReuseIsWeighedOnBlocks) {
   EXPECT_GT(restir.cost, ris.cost) << efficiencies(choice);
   EXPECT_EQ(ris.targets_per_path, 0.0);
 
-  RenderSettings direct = settings();
+  RenderSettings direct = long_render;
   direct.max_depth = 0;
-  const StrategyChoice without = render(facing_away(), direct).strategy_choice;
-  EXPECT_EQ(without.pilot_block_pixels, 0u);
-  EXPECT_THROW(measure_of(without, "restir"), std::runtime_error);
+  for (const RenderSettings& s : {direct, settings()}) {  // no scattering; 2 passes
+    const StrategyChoice without = Renderer(facing_away(), s).render({}, cancel).strategy_choice;
+    EXPECT_EQ(without.pilot_block_pixels, 0u);
+    EXPECT_THROW(measure_of(without, "restir"), std::runtime_error);
+  }
 }
 
 TEST(StrategyChoice, CostDecides) {
@@ -243,15 +248,22 @@ TEST(StrategyChoice, ThePilotSpendsItsShareOfTheRender) {
 }
 
 // The pilot's paths stay out of the image: `auto` renders as the strategy it chose, bit for bit.
+// The last case is a long render of the lights facing away, where the pilot weighs restir on
+// blocks and takes it: two of its passes, reuse and all.
 TEST(StrategyChoice, RendersAsTheStrategyItChose) {
-  for (const Scene& scene : {sparse_panel(), facing_away(), small_far_light()}) {
-    const RenderResult chosen = render(scene, settings(3));
-    RenderSettings named = settings(3);
+  RenderSettings long_render = settings(3);
+  long_render.spp = 1024;
+  const std::atomic<bool> cancel{false};
+  for (const auto& [scene, s] : {std::pair{sparse_panel(), settings(3)}, std::pair{facing_away(), settings(3)},
+                                 std::pair{small_far_light(), settings(3)}, std::pair{facing_away(), long_render}}) {
+    const RenderResult chosen = Renderer(scene, s).render_more(2, {}, cancel);
+    RenderSettings named = s;
     named.strategy.kind = chosen.strategy_choice.options.kind;
-    const RenderResult direct = render(scene, named);
+    const RenderResult direct = Renderer(scene, named).render_more(2, {}, cancel);
     EXPECT_EQ(chosen.strategy, direct.strategy);
     EXPECT_EQ(chosen.rgb, direct.rgb) << chosen.strategy;
     EXPECT_TRUE(direct.strategy_choice.pilot.empty());
+    if (s.spp == long_render.spp) EXPECT_EQ(chosen.strategy, "restir") << efficiencies(chosen.strategy_choice);
   }
 }
 

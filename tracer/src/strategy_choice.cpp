@@ -68,10 +68,13 @@ constexpr double kPilotSamplerTryCost = 0.17;
 /// scenes and real assets: within 11% of it on most, 21 and 23% under on two, 30% over on one.
 constexpr double kPilotReservoirCost = 1.34, kPilotTargetCost = 0.67;
 
-/// restir's blocks: kPilotBlocks squares of kPilotBlockSide pixels, drawn where the grid's first
-/// passes saw noise (block_centres). Twice restir's default radius across, so that most of a
-/// pixel's neighbours are in its block.
-constexpr unsigned kPilotBlockSide = 16, kPilotBlocks = 8;
+/// restir's blocks: up to kPilotBlocks squares of kPilotBlockSide pixels, drawn where the grid's
+/// first passes saw noise (block_centres). Twice restir's default radius across, so that most of
+/// a pixel's neighbours are in its block. They take at most kPilotBlockShare of the pilot's least
+/// paths; a render too short to pay for kMinPilotBlocks, whose spread tells how well the blocks
+/// know restir, does not weigh it.
+constexpr unsigned kPilotBlockSide = 16, kPilotBlocks = 8, kMinPilotBlocks = 3;
+constexpr double kPilotBlockShare = 0.25;
 
 double texel_gain(Emitters& emitters) {
   lightsampler::Frame frame;
@@ -246,12 +249,13 @@ std::vector<double> pixel_noise(const PilotRun& run, const std::vector<double>& 
   return noise;
 }
 
-/// Where restir's blocks go: kPilotBlocks of the grid's pixels, drawn (systematically, so the
-/// same every run) in proportion to an even mixture of `run`'s noise there over its first
-/// `passes` passes and a uniform share, so that the blocks go where the noise is but any pixel
-/// may get one; each weighted back by the inverse of its chance, which keeps the blocks' mean an
-/// estimate of the image's.
-std::vector<BlockCentre> block_centres(const std::vector<PilotRun>& runs, const PilotRun& run, unsigned passes) {
+/// Where restir's blocks go: `count` of the grid's pixels, drawn (systematically, so the same
+/// every run) in proportion to an even mixture of `run`'s noise there over its first `passes`
+/// passes and a uniform share, so that the blocks go where the noise is but any pixel may get
+/// one; each weighted back by the inverse of its chance, which keeps the blocks' mean an estimate
+/// of the image's.
+std::vector<BlockCentre> block_centres(const std::vector<PilotRun>& runs, const PilotRun& run, unsigned passes,
+                                       unsigned count) {
   const PilotPixels& grid = *run.pixels;
   const std::vector<double> noise = pixel_noise(run, noise_weights(runs, grid.size(), passes), passes);
   const double total = std::accumulate(noise.begin(), noise.end(), 0.0), n = double(grid.size());
@@ -261,8 +265,8 @@ std::vector<BlockCentre> block_centres(const std::vector<PilotRun>& runs, const 
   std::vector<BlockCentre> centres;
   double cumulative = 0.0;
   std::size_t i = 0;
-  for (unsigned k = 0; k < kPilotBlocks; ++k) {
-    const double u = (k + 0.5) / kPilotBlocks;
+  for (unsigned k = 0; k < count; ++k) {
+    const double u = (k + 0.5) / count;
     while (i + 1 < grid.size() && cumulative + chance[i] <= u) cumulative += chance[i++];
     centres.push_back({grid.x[i], grid.y[i], 1.0 / (chance[i] * n)});
   }
@@ -458,14 +462,17 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
   if (settings.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, settings.threads);
   const std::size_t pixels = std::size_t(settings.width) * settings.height;
   const std::size_t strategies = std::size(kPilotStrategies);
-  // Without scattering, restir's reservoirs light nothing: it is ris.
-  const unsigned side = std::min({kPilotBlockSide, settings.width, settings.height});
-  const std::size_t block_runs = settings.max_depth > 0 ? 2 : 0;
-  PilotPixels blocks;  // placed after the grid's first round
   // The pilot's paths: at most kPilotShare of the render's, but kMinPilotPasses on at least
-  // kMinPilotPixels and the blocks.
+  // kMinPilotPixels.
   const double budget = kPilotShare * double(settings.spp) * double(pixels);
-  const double block_paths = double(block_runs * kPilotBlocks * side * side);
+  // restir against ris on blocks, where the budget pays for enough of them; without scattering,
+  // restir's reservoirs light nothing: it is ris.
+  const unsigned side = std::min({kPilotBlockSide, settings.width, settings.height});
+  const double affordable = kPilotBlockShare * budget / kMinPilotPasses / (2.0 * side * side);
+  const unsigned block_count = std::min(kPilotBlocks, unsigned(std::max(0.0, affordable)));
+  const std::size_t block_runs = settings.max_depth > 0 && block_count >= kMinPilotBlocks ? 2 : 0;
+  PilotPixels blocks;  // placed after the grid's first round
+  const double block_paths = double(block_runs * block_count * side * side);
   const PilotPixels grid =
       pilot_grid(settings.width, settings.height,
                  std::clamp((budget / kMinPilotPasses - block_paths) / double(strategies), kMinPilotPixels, kPilotPixels));
@@ -502,7 +509,7 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
     for (PilotRun& run : runs) run_passes(run, camera, settings.width, passes, passes + kPilotRoundPasses);
     if (block_runs > 0 && paired.empty()) {
       blocks = pilot_blocks(settings.width, settings.height, side,
-                            block_centres(runs, runs[kPilotReused], passes + kPilotRoundPasses));
+                            block_centres(runs, runs[kPilotReused], passes + kPilotRoundPasses, block_count));
       paired.resize(block_runs);
       make_run(paired[0], kPilotStrategies[kPilotReused], blocks, kPilotLightSampleCost[kPilotReused]);
       make_run(paired[1], kPilotReuse, blocks, kPilotLightSampleCost[kPilotReused]);
