@@ -469,7 +469,7 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
   // restir's reservoirs light nothing: it is ris.
   const unsigned side = std::min({kPilotBlockSide, settings.width, settings.height});
   const double affordable = kPilotBlockShare * budget / kMinPilotPasses / (2.0 * side * side);
-  const unsigned block_count = std::min(kPilotBlocks, unsigned(std::max(0.0, affordable)));
+  const unsigned block_count = unsigned(std::clamp(affordable, 0.0, double(kPilotBlocks)));
   const std::size_t block_runs = settings.max_depth > 0 && block_count >= kMinPilotBlocks ? 2 : 0;
   PilotPixels blocks;  // placed after the grid's first round
   const double block_paths = double(block_runs * block_count * side * side);
