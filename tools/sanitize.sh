@@ -22,9 +22,9 @@ exclude=(
   # The real assets' renders, minutes under AddressSanitizer: the same renderer and loaders run
   # in the shipped and material scenes' render cases, and the fuzzers feed the loaders.
   'render\.real-.*'
-  # Uniform sampling's render cases (four times the others' samples) and the experimental
-  # strategies': the renderer and loaders under them run in the other strategies' cases.
-  'render\..*\.(uniform|texel|tree-texel)'
+  # The shipped scenes' render cases but those of the strategies `auto` chooses between (trs,
+  # ris) and `auto`'s own: the renderer and loaders under the others run in these.
+  'render\..*\.(uniform|power|tree|texel|tree-texel)'
 )
 filter=(-E "^($(IFS='|'; echo "${exclude[*]}"))\$")
 if [ "${1:-}" = --all ]; then
