@@ -156,9 +156,8 @@ struct Renderer::State {
     make_tracer();
   }
 
-  /// The path tracer and reuse of the chosen strategy.
+  /// The path tracer and reuse of the chosen strategy (none before: a reuse refers to both).
   void make_tracer() {
-    reuse.reset();
     tracer.emplace(scene, geometry, emitters, *chosen.strategy, settings.max_depth);
     const ReuseOptions* options = reuse_of(*chosen.strategy);
     if (options && settings.max_depth > 0)  // without scattering nothing is lit by a light sample
@@ -190,7 +189,7 @@ EmissionUpdate Renderer::set_frame(std::int64_t frame) {
   if (update.changed()) {
     const auto start = Clock::now();
     if (s.settings.strategy.kind == kAutoStrategy) {
-      s.reuse.reset();
+      s.reuse.reset();  // it refers to the tracer and the strategy, both remade
       s.tracer.reset();
       s.chosen = choose_strategy(s.scene, s.geometry, s.emitters, s.camera, s.settings);
       s.make_tracer();
