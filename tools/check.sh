@@ -2,11 +2,13 @@
 # The tests, at two depths.
 #
 #   bash tools/check.sh         installs the dependencies, builds everything in Release but the
-#                               benchmark programs and runs the test suite (ctest) but its five
-#                               longest tests, the real assets' renders, the GPU report's quick run
-#                               and the cluster tests. Within ten minutes on two cores.
+#                               benchmark programs and the Python modules and runs the test suite
+#                               (ctest) but its five longest tests, the real assets' renders, the
+#                               GPU report's quick run, the install and Python module tests and the
+#                               cluster tests. Within ten minutes on two cores.
 #   bash tools/check.sh --full  then also builds the benchmark programs (trs-bench, trs-dataset) and
-#                               runs their tests, those tests and renders; runs the animation demo
+#                               the Python modules and runs their tests, those tests and renders;
+#                               runs the animation demo
 #                               (tools/demo.sh --animation, at 0.25 s a frame); builds the library
 #                               alone, without its Vulkan backend, and runs that configuration's
 #                               tests; installs the Python modules with pip into a fresh venv,
@@ -56,12 +58,16 @@ long+='|VulkanSampler\.OutputsBeyond128MiBAnd65535Workgroups|render\.real-.*'
 # The experimental strategies' render cases too (their draws have statistical tests of their own),
 # and uniform sampling's, which take four times the others' samples (tests/CMakeLists.txt).
 long+='|render\..*\.(texel|tree-texel|uniform)'
+# And the tests that build and install: a project built against the installed package, the
+# example strategy plugin built outside the tree and the statistical suites run on it, and the
+# Python modules (whose build is --full's too): a minute and a half of the default check.
+long+='|install_consumer|strategy_plugin\..*|python_modules'
 
 if $default; then
   stage "default build"
-  # The benchmark programs and their tests (with tools/figures --quick) are --full's: a minute of
-  # the default check's build.
-  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DTRS_BUILD_BENCHMARKS=OFF
+  # The benchmark programs and their tests (with tools/figures --quick) and the Python modules
+  # are --full's: a minute and a half of the default check's build.
+  cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DTRS_BUILD_BENCHMARKS=OFF -DTRS_PYTHON=OFF
   cmake --build build
   stage "default tests"
   # All but those, the cluster tests, and the GPU report's quick run, which --full runs from the
@@ -77,8 +83,8 @@ if ! $full; then
   exit 0
 fi
 
-stage "benchmark programs and the longest tests"
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DTRS_BUILD_BENCHMARKS=ON
+stage "benchmark programs, Python modules and the longest tests"
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DTRS_BUILD_BENCHMARKS=ON -DTRS_PYTHON=ON
 cmake --build build
 ctest --test-dir build --output-on-failure --timeout 600 -j "$(nproc)" -R "^($long|trs_bench_.*)\$"
 

@@ -23,7 +23,8 @@ if [ "${1:-}" = --animation ]; then
 else
   bash tools/setup-debian.sh
 fi
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
+# The Python modules on: tools/check.sh leaves them to --full, and its build folder is this one.
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DTRS_PYTHON=ON
 # Only what the demo runs: the tests and fuzzers are tools/check.sh's to build.
 cmake --build build --target trs-render trs-imgdiff trs-sample trs_render_python
 out=build/demo
