@@ -138,6 +138,19 @@ TEST(StrategyChoice, ThePilotStopsOnceNoOtherCanBeFarAhead) {
   EXPECT_FALSE(pilot_decided(pilot(0.95), {a, independent}));  // close, and the ratio not known well
   EXPECT_TRUE(pilot_decided(pilot(0.95), {a, together}));      // close, and the ratio known
   EXPECT_TRUE(pilot_decided(pilot(3.0), {a, independent}));    // the second far ahead: it leads
+
+  // restir, close behind ris or close ahead: its measure already carries its blocks' error
+  // (taken one standard error up), which the stop does not count again, however large (its
+  // relative_error here); it is known against the others as ris is, and ris against power decides.
+  for (double restir : {0.97, 1.03}) {
+    std::vector<PilotMeasure> p = {{"power"}, {"trs"}, {"ris"}, {"restir"}};
+    const double efficiency[] = {0.3, 0.3, 1.0, restir};
+    for (std::size_t i = 0; i < p.size(); ++i) p[i].efficiency = efficiency[i];
+    p[3].relative_error = 0.5;
+    EXPECT_TRUE(pilot_decided(p, {a, a, together})) << restir;
+    p[0].efficiency = 0.97;  // power close to them, and not known well against ris
+    EXPECT_FALSE(pilot_decided(p, {independent, a, a})) << restir;
+  }
 }
 
 /// The choice follows the rule above from the pilot's own measures, in rounds within the bounds.

@@ -529,7 +529,10 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
     }
     best = leader(choice.pilot);
     measure_errors(choice.pilot, noise, best, reuse_error);
-    knew = decided(choice.pilot, best);
+    // Whether to go on (pilot_decided) counts restir's blocks' error once, as its measure
+    // already does (reuse_measure), not again on top of it: restir then renders where the pilot
+    // knows it leads, and holds the pilot no longer than ris would.
+    knew = pilot_decided(choice.pilot, noise);
     if (knew || !within_budget(passes + kPilotRoundPasses)) break;
   }
   const std::size_t rendering = cheapest_close_to(choice.pilot, best);

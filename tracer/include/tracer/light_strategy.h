@@ -201,7 +201,10 @@ std::size_t strategy_to_render(const std::vector<PilotMeasure>& pilot);
 /// Whether the pilot may stop: no other strategy can be more than kPilotIndifference more
 /// efficient than the most efficient, by kPilotStandardErrors standard errors of the ratio of
 /// their noises. `noise` holds each strategy's noise pixel by pixel, the same pixels for all
-/// (paired: the pixel-to-pixel spread the strategies share cancels in the ratio).
+/// (paired: the pixel-to-pixel spread the strategies share cancels in the ratio): those of
+/// kPilotStrategies. kPilotReuse's measure, where `pilot` has it, is known here as well as
+/// kPilotReused's: the error of its ratio to kPilotReused's on the blocks is already in it, its
+/// noise taken one standard error above its estimate.
 bool pilot_decided(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise);
 
 /// The strategy that renders, and for `auto` why it was chosen.
