@@ -56,8 +56,10 @@ export LIGHTSAMPLER_REQUIRE_VULKAN=1  # Vulkan tests fail rather than skip witho
 long='trs_study|figures_quick|VulkanTest\.SixtySamplersComeAndGo|VulkanTest\.DroppedSamplersGiveTheirDeviceMemoryBack'
 long+='|VulkanSampler\.OutputsBeyond128MiBAnd65535Workgroups|render\.real-.*'
 # The experimental strategies' render cases too (their draws have statistical tests of their own),
-# and uniform sampling's, which take four times the others' samples (tests/CMakeLists.txt).
-long+='|render\..*\.(texel|tree-texel|uniform)'
+# uniform sampling's, which take four times the others' samples (tests/CMakeLists.txt), and the
+# baselines power's and tree's (statistical tests of their own too): the default check renders
+# each scene with trs, ris and auto, which draw from the light sampler and pick among the rest.
+long+='|render\..*\.(texel|tree-texel|uniform|power|tree)'
 # And the tests that build and install: a project built against the installed package, the
 # example strategy plugin built outside the tree and the statistical suites run on it, and the
 # Python modules (whose build is --full's too): a minute and a half of the default check.
