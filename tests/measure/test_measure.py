@@ -87,6 +87,42 @@ class AgainstImgdiff(unittest.TestCase):
         self.assert_agrees(trs_measure.relmse(self.image, self.reference, lit), figures["overall"]["relmse"])
 
 
+class Trimmed(unittest.TestCase):
+    """trimmed_relmse: relMSE less the 0.1% of pixels of the largest error."""
+
+    def setUp(self):
+        rng = np.random.default_rng(11)
+        self.reference = rng.uniform(0.5, 1.0, (50, 40, 3))  # 2,000 pixels: 2 left out
+        self.image = self.reference * rng.normal(1.0, 0.1, self.reference.shape)
+
+    def per_pixel(self, image):
+        return trs_measure.relative_errors(image, self.reference).mean(axis=2).ravel()
+
+    def test_without_a_share_it_is_relmse(self):
+        self.assertAlmostEqual(trs_measure.trimmed_relmse(self.image, self.reference, share=0.0),
+                               trs_measure.relmse(self.image, self.reference), places=12)
+
+    def test_fireflies_are_left_out_and_nothing_else(self):
+        clean = trs_measure.trimmed_relmse(self.image, self.reference)
+        image = self.image.copy()
+        image[3, 5] *= 1e4  # two fireflies: the share of 2,000 pixels
+        image[40, 30, 1] *= 1e4
+        self.assertGreater(trs_measure.relmse(image, self.reference), 100 * clean)
+        errors = np.sort(self.per_pixel(self.image))
+        fireflies = {np.ravel_multi_index((3, 5), (50, 40)), np.ravel_multi_index((40, 30), (50, 40))}
+        kept = [e for i, e in enumerate(self.per_pixel(self.image)) if i not in fireflies]
+        self.assertAlmostEqual(trs_measure.trimmed_relmse(image, self.reference), np.mean(kept), places=12)
+        self.assertAlmostEqual(clean, errors[:-2].mean(), places=12)
+
+    def test_over_the_pixels_selected(self):
+        lit = np.zeros((50, 40), dtype=bool)
+        lit[:25] = True  # 1,000 pixels: 1 left out
+        errors = np.sort(trs_measure.relative_errors(self.image, self.reference).mean(axis=2)[lit])
+        self.assertAlmostEqual(trs_measure.trimmed_relmse(self.image, self.reference, lit), errors[:-1].mean(),
+                               places=12)
+        self.assertTrue(np.isnan(trs_measure.trimmed_relmse(self.image, self.reference, ~np.ones_like(lit))))
+
+
 class Edges(unittest.TestCase):
     def test_no_pixel_selected_gives_nan(self):
         image = np.ones((2, 3, 3))

@@ -82,6 +82,7 @@ class Study(unittest.TestCase):
         self.assertEqual(list(rows[0].keys())[:13], ["strategy", "spp", "time", "seed", "seconds", "passes",
                                                       "relmse", "relmse_lit", "rmse", "mean_ratio", "image", "lights",
                                                       "relmse_lit_32"])
+        self.assertEqual(list(rows[0].keys())[-2:], ["relmse_trimmed", "relmse_lit_trimmed"])
         self.assertEqual({r["frame"] for r in rows}, {""})  # a still
         for r in rows:
             self.assertTrue((self.out / r["image"]).is_file(), r["image"])
@@ -101,6 +102,9 @@ class Study(unittest.TestCase):
                 self.assertEqual(done.returncode, 0, done.stderr)
                 expected = json.loads(figures.read_text())["overall"]["relmse"]
                 self.assertAlmostEqual(float(r[column]) / expected, 1.0, places=5, msg=f"{r['image']} {column}")
+                # Less the 0.1% of pixels of the largest error (2 of these 2,304): no more.
+                trimmed = float(r[f"{column}_trimmed"])
+                self.assertTrue(0.0 < trimmed <= expected * (1 + 1e-5), f"{r['image']} {column}_trimmed")
 
     def imgdiff_guard(self):
         """relMSE's guard, as trs-imgdiff writes it."""

@@ -1,5 +1,6 @@
 """The study's renders measured against their frame's reference (trs_measure's relMSE, over the
-whole image, the lit pixels and lit blocks) into the rows of results.csv."""
+whole image, the lit pixels and lit blocks, and trimmed of its largest pixel errors) into the rows
+of results.csv."""
 
 import csv
 import json
@@ -9,7 +10,8 @@ import study_plan
 import trs_measure
 
 CSV_COLUMNS = ["strategy", "spp", "time", "seed", "seconds", "passes", "relmse", "relmse_lit", "rmse",
-               "mean_ratio", "image", "lights", "relmse_lit_32", "mean_ratio_lit", "frame", "node", "cpu"]
+               "mean_ratio", "image", "lights", "relmse_lit_32", "mean_ratio_lit", "frame", "node", "cpu",
+               "relmse_trimmed", "relmse_lit_trimmed"]
 BLOCK = 32  # pixels on a side of the blocks relmse_lit_32 averages over
 
 
@@ -37,7 +39,9 @@ def measure(image, reference, lit):
             "rmse": float(np.sqrt(((image - reference) ** 2).mean())),
             "mean_ratio": mean_ratio(image, reference),
             "relmse_lit_32": trs_measure.relmse(block_means(image), block_means(reference), lit_blocks),
-            "mean_ratio_lit": mean_ratio(image[lit], reference[lit])}
+            "mean_ratio_lit": mean_ratio(image[lit], reference[lit]),
+            "relmse_trimmed": trs_measure.trimmed_relmse(image, reference),
+            "relmse_lit_trimmed": trs_measure.trimmed_relmse(image, reference, lit)}
 
 
 def mean_ratio(image, reference):

@@ -13,7 +13,8 @@ def by_setting(rows):
     for runs in settings.values():
         worst = max(runs, key=lambda r: r["relmse_lit"])
         row = dict(runs[0], worst_relmse_lit=worst["relmse_lit"], worst_frame=worst["frame"], frame_count=len(runs))
-        for column in ["seconds", "relmse", "relmse_lit", "rmse", "mean_ratio", "relmse_lit_32", "mean_ratio_lit"]:
+        for column in ["seconds", "relmse", "relmse_lit", "rmse", "mean_ratio", "relmse_lit_32", "mean_ratio_lit",
+                       "relmse_trimmed", "relmse_lit_trimmed"]:
             row[column] = float(np.mean([r[column] for r in runs]))
         out.append(row)
     return out
