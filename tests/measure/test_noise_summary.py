@@ -41,9 +41,8 @@ class NoiseSummary(unittest.TestCase):
         self.tmp.cleanup()
 
     def summary(self, *options, study="scene"):
-        done = subprocess.run([sys.executable, TOOLS / "noise_summary.py", self.dir / study, "--baseline", "auto",
+        return subprocess.run([sys.executable, TOOLS / "noise_summary.py", self.dir / study, "--baseline", "auto",
                                "--csv", self.dir / "out.csv", *options], capture_output=True, text=True)
-        return done
 
     def ratio(self, *options):
         done = self.summary(*options)

@@ -44,8 +44,8 @@ def relmse(image, reference, pixels=None):
 # The share of pixels, those of the largest error, that trimmed_relmse leaves out: rare bright
 # paths (fireflies) that one render of a few seconds happens to hold decide its relMSE, and move
 # it tenfold from seed to seed; without them it measures the noise every render of the strategy
-# shows. The usual choice in path-guiding evaluations (e.g. Müller et al. 2019, "Neural importance
-# sampling"), reported beside relMSE, never instead of it.
+# shows. The usual choice in path-guiding evaluations (e.g. Figueiredo et al.'s results for "Neural
+# path guiding with distribution factorization", EGSR 2025), reported beside relMSE, never instead.
 TRIMMED_SHARE = 0.001
 
 
