@@ -21,6 +21,11 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
 #include <string>
 
 #include "scene_builder.h"
@@ -153,6 +158,41 @@ TEST(StrategyChoice, ThePilotStopsOnceNoOtherCanBeFarAhead) {
   }
 }
 
+// What rendering with the leader is expected to lose to another strategy, E[(r - 1)^+] over
+// their efficiency ratio r, lognormal about the estimate with the standard error of the log of
+// the ratio of their noises: checked against that integral taken by quadrature, with noises
+// whose ratio's standard error is known by hand. Noises of 26 pixels alternating 1 and 3
+// against 2 everywhere: each pixel's relative difference is +-1/2, and the standard error of
+// the log of the ratio of their means sqrt(1/4 / 25) = 0.1.
+TEST(StrategyChoice, ThePilotsExpectedLoss) {
+  std::vector<double> alternating(26), flat(26, 2.0);
+  for (std::size_t i = 0; i < alternating.size(); ++i) alternating[i] = i % 2 ? 3.0 : 1.0;
+  constexpr double kSigma = 0.1;
+  const auto by_quadrature = [](double m, double sigma) {
+    double sum = 0.0;
+    const double step = sigma / 1000.0;
+    for (double d = step / 2.0; d < m + 12.0 * sigma; d += step)
+      sum += std::expm1(d) * std::exp(-0.5 * (d - m) * (d - m) / (sigma * sigma));
+    return sum * step / (sigma * std::sqrt(2.0 * std::numbers::pi));
+  };
+  const auto pilot = [](std::vector<double> efficiencies) {
+    std::vector<PilotMeasure> p;
+    for (std::size_t i = 0; i < efficiencies.size(); ++i) {
+      p.push_back({kPilotStrategies[i]});
+      p.back().efficiency = efficiencies[i];
+    }
+    return p;
+  };
+  for (double ratio : {1.0, 0.95, 0.8}) {  // the other strategy's efficiency over the leader's
+    const double expected = by_quadrature(std::log(ratio), kSigma);
+    EXPECT_NEAR(pilot_expected_loss(pilot({1.0, ratio}), {flat, alternating}), expected, 1e-3 * expected) << ratio;
+  }
+  // Two others: their losses add. Known exactly: none.
+  EXPECT_NEAR(pilot_expected_loss(pilot({1.0, 0.95, 0.8}), {flat, alternating, alternating}),
+              by_quadrature(std::log(0.95), kSigma) + by_quadrature(std::log(0.8), kSigma), 1e-4);
+  EXPECT_EQ(pilot_expected_loss(pilot({1.0, 0.95}), {flat, flat}), 0.0);
+}
+
 /// The choice follows the rule above from the pilot's own measures, in rounds within the bounds.
 void expect_consistent(const StrategyChoice& choice) {
   ASSERT_EQ(choice.pilot.size(), std::size(kPilotStrategies) + (choice.pilot_block_pixels > 0 ? 1 : 0));
@@ -258,6 +298,33 @@ TEST(StrategyChoice, ThePilotSpendsItsShareOfTheRender) {
   EXPECT_LT(short_render.pilot_pixels, long_render.pilot_pixels);
   EXPECT_LE(short_render.pilot_pixels, 1024u);
   EXPECT_LE(pilot_paths(long_render), kPilotShare * 64 * 160 * 120);
+}
+
+// To a deadline, a round of the pilot is weighed by its time against the time left: to one
+// already past, a round costs more than any strategy could win back, and the pilot stops at its
+// least; to one an hour away, a round costs next to nothing, and the pilot is the one of a
+// render without a deadline (as long as its paths allow: spp unbounded), which here goes on
+// beyond its least. A pilot blind to the deadline would run as long to both.
+TEST(StrategyChoice, ToADeadlineThePilotWeighsARoundAgainstTheTimeLeft) {
+  RenderSettings s = settings();
+  s.spp = std::numeric_limits<unsigned>::max();
+  const auto choice_to = [&](std::optional<std::chrono::steady_clock::time_point> deadline) {
+    RenderSettings d = s;
+    d.deadline = deadline;
+    const std::atomic<bool> cancel{true};  // the choice alone: no pass
+    return Renderer(sparse_panel(), d).render({}, cancel).strategy_choice;
+  };
+  const StrategyChoice unbounded = choice_to(std::nullopt);
+  ASSERT_GT(unbounded.pilot_passes, kMinPilotPasses) << unbounded.reason;
+
+  const StrategyChoice far = choice_to(std::chrono::steady_clock::now() + std::chrono::hours(1));
+  EXPECT_EQ(far.pilot_passes, unbounded.pilot_passes);
+  EXPECT_EQ(far.reason, unbounded.reason);
+
+  const StrategyChoice past = choice_to(std::chrono::steady_clock::now());
+  expect_consistent(past);
+  EXPECT_EQ(past.pilot_passes, kMinPilotPasses) << past.reason;
+  EXPECT_NE(past.reason.find("could win back"), std::string::npos) << past.reason;
 }
 
 // The pilot's paths stay out of the image: `auto` renders as the strategy it chose, bit for bit.

@@ -78,8 +78,8 @@ int render_still(const RenderOptions& options, std::chrono::steady_clock::time_p
   const std::optional<DisplayEncoder> display = preview_encoder(options, hooks.note);
 
   const tracer::Scene scene = load_scene(options);
-  tracer::Renderer renderer = make_renderer(scene, options, 0);
-  if (options.time_seconds) renderer.set_deadline(after(start, *options.time_seconds));
+  tracer::Renderer renderer =
+      make_renderer(scene, options, 0, options.time_seconds ? std::optional(after(start, *options.time_seconds)) : std::nullopt);
   ProgressBar bar(options.progress, options.time_seconds);
   const tracer::RenderResult result = renderer.render(
       [&](unsigned done, unsigned total) {
@@ -180,11 +180,13 @@ int render_sequence(const RenderOptions& options, const RunHooks& hooks) {
   for (std::size_t i = 0; i < todo.size() && !hooks.cancel; ++i) {
     const auto frame_start = std::chrono::steady_clock::now();
     SequenceFrame frame{todo[i], tracer::animation_seconds(todo[i], options.render.fps), {}};
-    if (renderer)
+    const auto deadline = options.time_seconds ? std::optional(after(frame_start, *options.time_seconds)) : std::nullopt;
+    if (renderer) {
+      renderer->set_deadline(deadline);  // before the frame: a new emission chooses `auto`'s strategy again
       frame.update = renderer->set_frame(frame.frame);
-    else
-      renderer.emplace(make_renderer(scene, options, frame.frame));
-    renderer->set_deadline(options.time_seconds ? std::optional(after(frame_start, *options.time_seconds)) : std::nullopt);
+    } else {
+      renderer.emplace(make_renderer(scene, options, frame.frame, deadline));
+    }
     const auto done_before = unsigned(i) * spp;
     const tracer::RenderResult result = renderer->render(
         [&](unsigned done, unsigned) {
@@ -224,9 +226,12 @@ tracer::Scene load_scene(const RenderOptions& options) {
   return scene;
 }
 
-tracer::Renderer make_renderer(const tracer::Scene& scene, const RenderOptions& options, std::int64_t frame) {
+tracer::Renderer make_renderer(const tracer::Scene& scene, const RenderOptions& options, std::int64_t frame,
+                               std::optional<std::chrono::steady_clock::time_point> deadline) {
+  tracer::RenderSettings settings = options.render;
+  settings.deadline = deadline;
   try {
-    return tracer::Renderer(scene, options.render, frame);
+    return tracer::Renderer(scene, settings, frame);
   } catch (const std::invalid_argument& e) {
     throw FileError(options.scene, e.what());
   }

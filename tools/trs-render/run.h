@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <ostream>
 #include <string>
 
@@ -63,9 +64,11 @@ DisplayEncoder display_encoder(const RenderOptions& options, const NoteHandler& 
 /// made Lambertian with --diffuse-materials (their transmission kept). Throws FileError naming the file.
 tracer::Scene load_scene(const RenderOptions& options);
 
-/// The renderer of `scene` with the options' settings at animation frame `frame`; a scene that
-/// cannot be rendered so (its lights emit nothing, say) is a FileError naming options.scene.
-tracer::Renderer make_renderer(const tracer::Scene& scene, const RenderOptions& options, std::int64_t frame);
+/// The renderer of `scene` with the options' settings at animation frame `frame`, to `deadline`
+/// where given (`auto`'s pilot weighs its rounds against the time left); a scene that cannot be
+/// rendered so (its lights emit nothing, say) is a FileError naming options.scene.
+tracer::Renderer make_renderer(const tracer::Scene& scene, const RenderOptions& options, std::int64_t frame,
+                               std::optional<std::chrono::steady_clock::time_point> deadline = std::nullopt);
 
 /// Renders what `options` ask (a still, or the frames of options.frames) from `start`, the
 /// instant a time budget counts from, and writes each output that is set. Returns 0, or

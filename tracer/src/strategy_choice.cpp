@@ -23,6 +23,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 #include <optional>
 
@@ -403,6 +404,14 @@ bool decided(const std::vector<PilotMeasure>& pilot, std::size_t best) {
   return true;
 }
 
+/// E[(e^d - 1)^+] for d ~ N(m, sigma^2): how much more efficient, as a share, a strategy whose
+/// log efficiency ratio to the leader is d would be, where it is.
+double expected_excess(double m, double sigma) {
+  if (!(sigma > 0.0)) return std::max(0.0, std::expm1(m));
+  const auto normal_cdf = [](double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); };
+  return std::exp(m + 0.5 * sigma * sigma) * normal_cdf(m / sigma + sigma) - normal_cdf(m / sigma);
+}
+
 std::string pilot_reason(const std::vector<PilotMeasure>& pilot, std::size_t best, std::size_t chosen,
                          const PilotPixels& grid, const PilotPixels& blocks, unsigned passes, const char* stop) {
   char text[768];
@@ -435,6 +444,16 @@ bool pilot_decided(std::vector<PilotMeasure> pilot, const std::vector<std::vecto
   const std::size_t best = leader(pilot);
   measure_errors(pilot, noise, best, 0.0);
   return decided(pilot, best);
+}
+
+double pilot_expected_loss(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise) {
+  if (pilot.empty()) return 0.0;
+  const std::size_t best = leader(pilot);
+  measure_errors(pilot, noise, best, 0.0);
+  double loss = 0.0;
+  for (std::size_t s = 0; s < pilot.size(); ++s)
+    if (s != best) loss += expected_excess(std::log(pilot[s].efficiency / pilot[best].efficiency), pilot[s].relative_error);
+  return loss;
 }
 
 ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emitters& emitters,
@@ -476,8 +495,16 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
   const PilotPixels grid =
       pilot_grid(settings.width, settings.height,
                  std::clamp((budget / kMinPilotPasses - block_paths) / double(strategies), kMinPilotPixels, kPilotPixels));
-  const auto within_budget = [&](unsigned passes) {
-    return passes * (double(strategies * grid.size()) + block_paths) <= budget;
+  const double pass_paths = double(strategies * grid.size()) + block_paths;
+  const auto within_budget = [&](unsigned passes) { return passes * pass_paths <= budget; };
+  // What another round would take of the render: its paths' share of the render's, and, to a
+  // deadline, its time's share of the time left, a round taking as long as the last.
+  const auto round_share = [&](std::chrono::steady_clock::time_point round_start) {
+    const double paths = kPilotRoundPasses * pass_paths / (double(settings.spp) * double(pixels));
+    if (!settings.deadline) return paths;
+    const auto now = std::chrono::steady_clock::now();
+    if (now >= *settings.deadline) return std::numeric_limits<double>::infinity();
+    return std::max(paths, std::chrono::duration<double>(now - round_start) / (*settings.deadline - now));
   };
   // A strategy's pilot over `on`, with point lights in proportion to its pixels: a connection
   // picks one light of the set, so the noise per path is the same (renderer.h, kAutoLightsPerQuery).
@@ -504,8 +531,10 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
   std::vector<PilotMeasure> pair;
   std::size_t best = 0;
   unsigned passes = 0;
-  bool knew = false;  // whether it stopped because no other strategy can be far ahead
+  bool knew = false;     // whether it stopped because no other strategy can be far ahead
+  bool repaid = false;   // or because another round would cost more than it could win back
   while (passes < kMaxPilotPasses) {
+    const auto round_start = std::chrono::steady_clock::now();
     for (PilotRun& run : runs) run_passes(run, camera, settings.width, passes, passes + kPilotRoundPasses);
     if (block_runs > 0 && paired.empty()) {
       blocks = pilot_blocks(settings.width, settings.height, side,
@@ -533,7 +562,8 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
     // already does (reuse_measure), not again on top of it: restir then renders where the pilot
     // knows it leads, and holds the pilot no longer than ris would.
     knew = pilot_decided(choice.pilot, noise);
-    if (knew || !within_budget(passes + kPilotRoundPasses)) break;
+    repaid = !knew && pilot_expected_loss(choice.pilot, noise) <= round_share(round_start);
+    if (knew || repaid || !within_budget(passes + kPilotRoundPasses)) break;
   }
   const std::size_t rendering = cheapest_close_to(choice.pilot, best);
   choice.pilot_passes = passes;
@@ -541,7 +571,10 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
   choice.pilot_block_pixels = blocks.size();
   choice.most_efficient = choice.pilot[best].strategy;
   choice.options.kind = choice.pilot[rendering].strategy;
-  const char* stop = knew ? "" : passes == kMaxPilotPasses ? " (its most)" : " (its share of the render)";
+  const char* stop = knew     ? ""
+                     : repaid ? " (another would cost more of the render than it could win back)"
+                     : passes == kMaxPilotPasses ? " (its most)"
+                                                 : " (its share of the render)";
   choice.reason = pilot_reason(choice.pilot, best, rendering, grid, blocks, passes, stop);
   chosen.strategy = make_light_strategy(emitters, choice.options);  // with the render's lights
   chosen.pilot_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

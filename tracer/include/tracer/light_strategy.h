@@ -174,7 +174,8 @@ inline constexpr std::size_t kPilotReused = 2;  // ris
 /// at most kMaxPilotPasses. It stops once no other strategy can be more than kPilotIndifference
 /// more efficient than the most efficient, by kPilotStandardErrors standard errors of the ratio
 /// of their noises: where the strategies are far apart, or known to be close enough that either
-/// loses little, more passes would not change what renders.
+/// loses little, more passes would not change what renders. It stops as well once another round
+/// would take a larger share of the render than it could win back (pilot_expected_loss).
 inline constexpr unsigned kPilotRoundPasses = 2, kMinPilotPasses = 4, kMaxPilotPasses = 8;
 inline constexpr double kPilotIndifference = 0.1, kPilotStandardErrors = 2.0;
 
@@ -206,6 +207,14 @@ std::size_t strategy_to_render(const std::vector<PilotMeasure>& pilot);
 /// kPilotReused's: the error of its ratio to kPilotReused's on the blocks is already in it, its
 /// noise taken one standard error above its estimate.
 bool pilot_decided(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise);
+
+/// What rendering with the most efficient of `pilot` is expected to lose, as a share of its
+/// efficiency, to whichever other strategy is in truth more efficient: for each other one,
+/// E[(r - 1)^+] over its efficiency ratio r to the most efficient, lognormal about the pilot's
+/// estimate with the standard error of pilot_decided (`noise` as there), summed over the others
+/// (the sum bounds the loss to the best of them from above). Another round of the pilot can at
+/// most win this back, so where a round costs a larger share of the render, it stops.
+double pilot_expected_loss(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise);
 
 /// The strategy that renders, and for `auto` why it was chosen.
 struct StrategyChoice {

@@ -25,7 +25,8 @@ struct RenderSettings {
   unsigned width = 640;
   unsigned height = 360;
   unsigned spp = 16;        ///< passes (with a deadline: the most passes)
-  /// No pass starts at or after this instant; the first always runs.
+  /// No pass starts at or after this instant; the first always runs. `auto`'s pilot weighs a
+  /// round against the time left to it.
   std::optional<std::chrono::steady_clock::time_point> deadline;
   unsigned max_depth = 4;   ///< see PathTracer
   /// Animation frame f renders with its own random streams, from seed ^ mix64(f): frame 0's are
