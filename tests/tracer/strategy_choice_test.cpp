@@ -158,22 +158,29 @@ TEST(StrategyChoice, ThePilotStopsOnceNoOtherCanBeFarAhead) {
   }
 }
 
-// What rendering with the leader is expected to lose to another strategy, E[(r - 1)^+] over
-// their efficiency ratio r, lognormal about the estimate with the standard error of the log of
-// the ratio of their noises: checked against that integral taken by quadrature, with noises
-// whose ratio's standard error is known by hand. Noises of 26 pixels alternating 1 and 3
-// against 2 everywhere: each pixel's relative difference is +-1/2, and the standard error of
-// the log of the ratio of their means sqrt(1/4 / 25) = 0.1.
-TEST(StrategyChoice, ThePilotsExpectedLoss) {
+// What another round of the pilot is expected to win back (the knowledge gradient): after the
+// round the other strategy's log efficiency ratio to the leader has error s' = s sqrt(p / (p + 2))
+// (p passes so far), and its estimate has moved by N(0, s^2 - s'^2); the round pays where the
+// other's expected efficiency then, e^(m' + s'^2 / 2), is above the leader's. Checked against
+// that integral taken by quadrature, with noises whose ratio's standard error s is known by hand:
+// noises of 26 pixels alternating 1 and 3 against 2 everywhere, each pixel's relative difference
+// +-1/2, and the standard error of the log of the ratio of their means sqrt(1/4 / 25) = 0.1.
+// It can never exceed what rendering with the leader is expected to lose, E[(e^d - 1)^+] with d
+// ~ N(m, s^2), and it falls as the passes grow.
+TEST(StrategyChoice, WhatAnotherRoundIsExpectedToWinBack) {
   std::vector<double> alternating(26), flat(26, 2.0);
   for (std::size_t i = 0; i < alternating.size(); ++i) alternating[i] = i % 2 ? 3.0 : 1.0;
   constexpr double kSigma = 0.1;
-  const auto by_quadrature = [](double m, double sigma) {
+  const auto excess = [](double m, double sigma) {  // E[(e^d - 1)^+], d ~ N(m, sigma^2)
     double sum = 0.0;
     const double step = sigma / 1000.0;
     for (double d = step / 2.0; d < m + 12.0 * sigma; d += step)
       sum += std::expm1(d) * std::exp(-0.5 * (d - m) * (d - m) / (sigma * sigma));
     return sum * step / (sigma * std::sqrt(2.0 * std::numbers::pi));
+  };
+  const auto by_quadrature = [&](double m, unsigned passes) {
+    const double after = kSigma * kSigma * passes / (passes + kPilotRoundPasses);
+    return excess(m + 0.5 * after, std::sqrt(kSigma * kSigma - after));
   };
   const auto pilot = [](std::vector<double> efficiencies) {
     std::vector<PilotMeasure> p;
@@ -184,13 +191,20 @@ TEST(StrategyChoice, ThePilotsExpectedLoss) {
     return p;
   };
   for (double ratio : {1.0, 0.95, 0.8}) {  // the other strategy's efficiency over the leader's
-    const double expected = by_quadrature(std::log(ratio), kSigma);
-    EXPECT_NEAR(pilot_expected_loss(pilot({1.0, ratio}), {flat, alternating}), expected, 1e-3 * expected) << ratio;
+    double before = std::numeric_limits<double>::infinity();
+    for (unsigned passes : {kMinPilotPasses, 6u}) {
+      const double gain = pilot_round_gain(pilot({1.0, ratio}), {flat, alternating}, passes);
+      const double expected = by_quadrature(std::log(ratio), passes);
+      EXPECT_NEAR(gain, expected, 1e-3 * expected) << ratio << ", " << passes;
+      EXPECT_LT(gain, excess(std::log(ratio), kSigma)) << ratio << ", " << passes;
+      EXPECT_LT(gain, before) << ratio << ", " << passes;
+      before = gain;
+    }
   }
-  // Two others: their losses add. Known exactly: none.
-  EXPECT_NEAR(pilot_expected_loss(pilot({1.0, 0.95, 0.8}), {flat, alternating, alternating}),
-              by_quadrature(std::log(0.95), kSigma) + by_quadrature(std::log(0.8), kSigma), 1e-4);
-  EXPECT_EQ(pilot_expected_loss(pilot({1.0, 0.95}), {flat, flat}), 0.0);
+  // Two others: their gains add. Their ratios known exactly: nothing to win back.
+  EXPECT_NEAR(pilot_round_gain(pilot({1.0, 0.95, 0.8}), {flat, alternating, alternating}, kMinPilotPasses),
+              by_quadrature(std::log(0.95), kMinPilotPasses) + by_quadrature(std::log(0.8), kMinPilotPasses), 1e-4);
+  EXPECT_EQ(pilot_round_gain(pilot({1.0, 0.95}), {flat, flat}, kMinPilotPasses), 0.0);
 }
 
 /// The choice follows the rule above from the pilot's own measures, in rounds within the bounds.

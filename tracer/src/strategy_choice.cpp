@@ -404,8 +404,8 @@ bool decided(const std::vector<PilotMeasure>& pilot, std::size_t best) {
   return true;
 }
 
-/// E[(e^d - 1)^+] for d ~ N(m, sigma^2): how much more efficient, as a share, a strategy whose
-/// log efficiency ratio to the leader is d would be, where it is.
+/// E[(e^d - 1)^+] for d ~ N(m, sigma^2): by how much of the leader's efficiency another is
+/// ahead of it, where it is, when d is the log of the ratio of their efficiencies.
 double expected_excess(double m, double sigma) {
   if (!(sigma > 0.0)) return std::max(0.0, std::expm1(m));
   const auto normal_cdf = [](double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); };
@@ -446,14 +446,20 @@ bool pilot_decided(std::vector<PilotMeasure> pilot, const std::vector<std::vecto
   return decided(pilot, best);
 }
 
-double pilot_expected_loss(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise) {
+double pilot_round_gain(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise,
+                        unsigned passes) {
   if (pilot.empty()) return 0.0;
   const std::size_t best = leader(pilot);
   measure_errors(pilot, noise, best, 0.0);
-  double loss = 0.0;
-  for (std::size_t s = 0; s < pilot.size(); ++s)
-    if (s != best) loss += expected_excess(std::log(pilot[s].efficiency / pilot[best].efficiency), pilot[s].relative_error);
-  return loss;
+  const double kept = double(passes) / double(passes + kPilotRoundPasses);  // of the error's square
+  double gain = 0.0;
+  for (std::size_t s = 0; s < pilot.size(); ++s) {
+    if (s == best) continue;
+    const double error = pilot[s].relative_error, after = error * error * kept;
+    gain += expected_excess(std::log(pilot[s].efficiency / pilot[best].efficiency) + 0.5 * after,
+                            std::sqrt(error * error - after));
+  }
+  return gain;
 }
 
 ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emitters& emitters,
@@ -562,7 +568,7 @@ ChosenStrategy choose_strategy(const Scene& scene, const Geometry& geometry, Emi
     // already does (reuse_measure), not again on top of it: restir then renders where the pilot
     // knows it leads, and holds the pilot no longer than ris would.
     knew = pilot_decided(choice.pilot, noise);
-    repaid = !knew && pilot_expected_loss(choice.pilot, noise) <= round_share(round_start);
+    repaid = !knew && pilot_round_gain(choice.pilot, noise, passes) <= round_share(round_start);
     if (knew || repaid || !within_budget(passes + kPilotRoundPasses)) break;
   }
   const std::size_t rendering = cheapest_close_to(choice.pilot, best);

@@ -175,7 +175,7 @@ inline constexpr std::size_t kPilotReused = 2;  // ris
 /// more efficient than the most efficient, by kPilotStandardErrors standard errors of the ratio
 /// of their noises: where the strategies are far apart, or known to be close enough that either
 /// loses little, more passes would not change what renders. It stops as well once another round
-/// would take a larger share of the render than it could win back (pilot_expected_loss).
+/// would take a larger share of the render than it is expected to win back (pilot_round_gain).
 inline constexpr unsigned kPilotRoundPasses = 2, kMinPilotPasses = 4, kMaxPilotPasses = 8;
 inline constexpr double kPilotIndifference = 0.1, kPilotStandardErrors = 2.0;
 
@@ -208,13 +208,17 @@ std::size_t strategy_to_render(const std::vector<PilotMeasure>& pilot);
 /// noise taken one standard error above its estimate.
 bool pilot_decided(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise);
 
-/// What rendering with the most efficient of `pilot` is expected to lose, as a share of its
-/// efficiency, to whichever other strategy is in truth more efficient: for each other one,
-/// E[(r - 1)^+] over its efficiency ratio r to the most efficient, lognormal about the pilot's
-/// estimate with the standard error of pilot_decided (`noise` as there), summed over the others
-/// (the sum bounds the loss to the best of them from above). Another round of the pilot can at
-/// most win this back, so where a round costs a larger share of the render, it stops.
-double pilot_expected_loss(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise);
+/// What another round of the pilot is expected to win back, as a share of the most efficient's
+/// efficiency: the chance that it shows another strategy ahead, times by how much (the knowledge
+/// gradient). Each other strategy's log efficiency ratio to the most efficient is normal about
+/// the pilot's estimate after `passes` passes, with the standard error of pilot_decided (`noise`
+/// as there); after kPilotRoundPasses more its error would shrink as 1/sqrt(passes), and its
+/// estimate move by what the error loses. The round pays where that moves the other's expected
+/// efficiency above the leader's: E[(e^(m' + s'^2/2) - 1)^+] over the estimate m' after it (s' its
+/// error then), summed over the others. The pilot stops where a round costs a larger share of
+/// the render than this.
+double pilot_round_gain(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise,
+                        unsigned passes);
 
 /// The strategy that renders, and for `auto` why it was chosen.
 struct StrategyChoice {
