@@ -143,6 +143,15 @@ TEST(StrategyChoice, ThePilotStopsOnceNoOtherCanBeFarAhead) {
   EXPECT_FALSE(pilot_decided(pilot(0.95), {a, independent}));  // close, and the ratio not known well
   EXPECT_TRUE(pilot_decided(pilot(0.95), {a, together}));      // close, and the ratio known
   EXPECT_TRUE(pilot_decided(pilot(3.0), {a, independent}));    // the second far ahead: it leads
+  // One pixel holding most of both noises (a firefly in each, the second's a third brighter):
+  // their ratio is that of two fireflies, however alike the other pixels. Leaving that pixel
+  // out moves its log by a quarter, so a strategy at 0.8 may be ahead; taken as the pixels'
+  // shares of both sums (the delta method), the ratio would seem known to 3%, and 0.8 behind.
+  std::vector<double> firefly = together, brighter = together;
+  firefly[7] = 1000.0;
+  brighter[7] = 1333.0;
+  EXPECT_FALSE(pilot_decided(pilot(0.8), {brighter, firefly}));
+  EXPECT_TRUE(pilot_decided(pilot(0.3), {brighter, firefly}));  // that far behind, known
 
   // restir, close behind ris or close ahead: its measure already carries its blocks' error
   // (taken one standard error up), which the stop does not count again, however large (its
@@ -163,14 +172,15 @@ TEST(StrategyChoice, ThePilotStopsOnceNoOtherCanBeFarAhead) {
 // (p passes so far), and its estimate has moved by N(0, s^2 - s'^2); the round pays where the
 // other's expected efficiency then, e^(m' + s'^2 / 2), is above the leader's. Checked against
 // that integral taken by quadrature, with noises whose ratio's standard error s is known by hand:
-// noises of 26 pixels alternating 1 and 3 against 2 everywhere, each pixel's relative difference
-// +-1/2, and the standard error of the log of the ratio of their means sqrt(1/4 / 25) = 0.1.
+// noises of 26 pixels alternating 1 and 3 against 2 everywhere (sums 52 and 50): leaving a pixel
+// out moves the log of the ratio to log(51/50) or log(49/50), +-log(51/49)/2 about their mean,
+// and the jackknife's standard error sqrt(25/26 * 26 (log(51/49)/2)^2) = 2.5 log(51/49) ~ 0.1.
 // It can never exceed what rendering with the leader is expected to lose, E[(e^d - 1)^+] with d
 // ~ N(m, s^2), and it falls as the passes grow.
 TEST(StrategyChoice, WhatAnotherRoundIsExpectedToWinBack) {
   std::vector<double> alternating(26), flat(26, 2.0);
   for (std::size_t i = 0; i < alternating.size(); ++i) alternating[i] = i % 2 ? 3.0 : 1.0;
-  constexpr double kSigma = 0.1;
+  const double kSigma = 2.5 * std::log(51.0 / 49.0);
   const auto excess = [](double m, double sigma) {  // E[(e^d - 1)^+], d ~ N(m, sigma^2)
     double sum = 0.0;
     const double step = sigma / 1000.0;

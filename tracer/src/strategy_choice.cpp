@@ -274,22 +274,28 @@ std::vector<BlockCentre> block_centres(const std::vector<PilotRun>& runs, const 
   return centres;
 }
 
-/// The standard error, over the pilot's pixels, of the log of the ratio of the means of `a` and
-/// `b` (the delta method). The pixels are paired: the strategies' paths there share their seeds
-/// and what makes a pixel hard, so their noises mostly move together, and the ratio is usually
-/// better known than either.
+/// The standard error, over the pilot's pixels, of the log of the ratio of the sums of `a` and
+/// `b`, by the jackknife: the spread of that log with each pixel left out in turn. The pixels
+/// are paired: the strategies' paths there share their seeds and what makes a pixel hard, so
+/// their noises mostly move together, and the ratio is usually better known than either. Where
+/// one pixel holds most of both sums (a rare bright path in each), their ratio is that of two
+/// fireflies, and leaving it out shows it; the delta method, which weighs each pixel by its
+/// share of both sums alike, would take such a ratio as known. Infinite where leaving a pixel
+/// out leaves nothing of a sum: the ratio rests on that pixel alone.
 double log_ratio_error(const std::vector<double>& a, const std::vector<double>& b) {
-  const double n = double(a.size());
-  const double mean_a = std::accumulate(a.begin(), a.end(), 0.0) / n;
-  const double mean_b = std::accumulate(b.begin(), b.end(), 0.0) / n;
-  if (!(mean_a > 0.0) || !(mean_b > 0.0) || a.size() < 2) return 0.0;
-  double sum = 0.0, squares = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const double d = a[i] / mean_a - b[i] / mean_b;
-    sum += d;
-    squares += d * d;
+  const std::size_t n = a.size();
+  const double sum_a = std::accumulate(a.begin(), a.end(), 0.0), sum_b = std::accumulate(b.begin(), b.end(), 0.0);
+  if (!(sum_a > 0.0) || !(sum_b > 0.0) || n < 2) return 0.0;
+  std::vector<double> left_out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double rest_a = sum_a - a[i], rest_b = sum_b - b[i];
+    if (!(rest_a > 1e-12 * sum_a) || !(rest_b > 1e-12 * sum_b)) return std::numeric_limits<double>::infinity();
+    left_out[i] = std::log(rest_a / rest_b);
   }
-  return std::sqrt(std::max(0.0, squares - sum * sum / n) / (n - 1.0) / n);
+  const double mean = std::accumulate(left_out.begin(), left_out.end(), 0.0) / double(n);
+  double squares = 0.0;
+  for (const double v : left_out) squares += (v - mean) * (v - mean);
+  return std::sqrt(squares * double(n - 1) / double(n));
 }
 
 /// Fills `m`'s cost from its run: the work of a pass over `pixels`, the light sampler's tries
