@@ -352,11 +352,12 @@ std::vector<double> block_sums(const std::vector<double>& noise, const PilotPixe
 
 /// kPilotReuse's measure: its noise over kPilotReused's on the blocks, `pair` (theirs in that
 /// order), times kPilotReused's on the grid, `reused`; its own cost. The blocks are few, and the
-/// ratio varies from one to the next: it is taken `error` (the standard error of its log) above
-/// its estimate, so that restir, the dearest, renders where the pilot knows it leads.
+/// ratio varies from one to the next: it is taken kPilotStandardErrors of `error` (the standard
+/// error of its log) above its estimate, so that restir, the dearest, renders only where the
+/// pilot knows it leads as surely as the pilot's stop knows anything.
 PilotMeasure reuse_measure(const PilotMeasure& reused, const std::vector<PilotMeasure>& pair, double error) {
   PilotMeasure m = pair[1];
-  m.relative_variance = reused.relative_variance * std::exp(error);
+  m.relative_variance = reused.relative_variance * std::exp(kPilotStandardErrors * error);
   if (pair[0].relative_variance > 0.0) m.relative_variance *= pair[1].relative_variance / pair[0].relative_variance;
   m.efficiency = 1.0 / (std::max(m.relative_variance, kNoiseFloor) * m.cost);
   return m;
