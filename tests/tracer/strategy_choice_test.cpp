@@ -154,7 +154,7 @@ TEST(StrategyChoice, ThePilotStopsOnceNoOtherCanBeFarAhead) {
   EXPECT_TRUE(pilot_decided(pilot(0.3), {brighter, firefly}));  // that far behind, known
 
   // restir, close behind ris or close ahead: its measure already carries its blocks' error
-  // (taken one standard error up), which the stop does not count again, however large (its
+  // (taken two standard errors up), which the stop does not count again, however large (its
   // relative_error here); it is known against the others as ris is, and ris against power decides.
   for (double restir : {0.97, 1.03}) {
     std::vector<PilotMeasure> p = {{"power"}, {"trs"}, {"ris"}, {"restir"}};

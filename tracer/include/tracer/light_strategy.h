@@ -205,7 +205,7 @@ std::size_t strategy_to_render(const std::vector<PilotMeasure>& pilot);
 /// (paired: the pixel-to-pixel spread the strategies share cancels in the ratio): those of
 /// kPilotStrategies. kPilotReuse's measure, where `pilot` has it, is known here as well as
 /// kPilotReused's: the error of its ratio to kPilotReused's on the blocks is already in it, its
-/// noise taken one standard error above its estimate.
+/// noise taken kPilotStandardErrors standard errors above its estimate.
 bool pilot_decided(std::vector<PilotMeasure> pilot, const std::vector<std::vector<double>>& noise);
 
 /// What another round of the pilot is expected to win back, as a share of the most efficient's
