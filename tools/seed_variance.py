@@ -8,8 +8,8 @@ relMSE against the reference adds what the reference itself misses (its own nois
 lacks); where that is most of it, strategies of very different noise come out close, and the
 more passes a strategy renders the less its relMSE falls. The seeds' spread leaves the
 reference's error out: the reference only scales each pixel. Each strategy needs two seeds or
-more at the budget; the last column is each strategy's variance over the baseline's (above 1:
-noisier than the baseline).
+more at the budget; the ratio columns are each strategy's variances over the baseline's (above
+1: noisier than the baseline).
 
   tools/seed_variance.py study/space-exploration --baseline ris --csv variance.csv
 """
@@ -42,9 +42,7 @@ def variance_terms(images, reference):
 
 
 def mean_and_trimmed(terms):
-    import numpy as np
-    kept = terms.size - int(trs_measure.TRIMMED_SHARE * terms.size)
-    return float(terms.mean()), float(np.partition(terms, kept - 1)[:kept].mean())
+    return float(terms.mean()), trs_measure.trimmed_mean(terms)
 
 
 def measure(folder, baseline):

@@ -49,16 +49,20 @@ def relmse(image, reference, pixels=None):
 TRIMMED_SHARE = 0.001
 
 
+def trimmed_mean(values, share=TRIMMED_SHARE):
+    """The mean of a flat array with its floor(share x size) largest left out; NaN where empty."""
+    import numpy as np
+    if values.size == 0:
+        return float("nan")
+    kept = values.size - int(share * values.size)
+    return float(np.partition(values, kept - 1)[:kept].mean())
+
+
 def trimmed_relmse(image, reference, pixels=None, share=TRIMMED_SHARE):
     """relMSE over the pixels selected (all by default), each pixel's error its channels' mean,
     with the floor(share x pixels) largest left out; NaN where none is selected."""
-    import numpy as np
     errors = relative_errors(image, reference).mean(axis=2)
-    errors = errors.ravel() if pixels is None else errors[pixels]
-    if errors.size == 0:
-        return float("nan")
-    kept = errors.size - int(share * errors.size)
-    return float(np.partition(errors, kept - 1)[:kept].mean())
+    return trimmed_mean(errors.ravel() if pixels is None else errors[pixels], share)
 
 
 def lit_pixels(emitter_mask):
